@@ -1,0 +1,16 @@
+#include "experiments/plugins.hpp"
+
+#include "algorithms/baselines/baselines.hpp"
+#include "framework/datasets/dataset.hpp"
+
+namespace dtsl {
+
+void register_all_plugins() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  register_dataset_plugins();
+  register_baselines();
+}
+
+}  // namespace dtsl

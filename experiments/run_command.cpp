@@ -1,0 +1,43 @@
+// dtsl run CONFIG: see framework/pipeline/runner.hpp.
+#include <unistd.h>
+
+#include <iostream>
+
+#include "experiments/cli.hpp"
+#include "framework/core/error.hpp"
+#include "framework/pipeline/experiment.hpp"
+#include "framework/pipeline/runner.hpp"
+
+namespace dtsl::cli {
+
+int run_command(Args& args, const std::vector<std::string>& command_line) {
+  RunnerOptions options;
+  const std::vector<std::string> overrides = args.values("set");
+  const std::string jobs = args.value("jobs", "1");
+  options.results_root = args.value("results", "results");
+  options.run_id = args.value("run-id");
+  options.progress = !args.flag("quiet");
+  options.command_line = command_line;
+  const std::vector<std::string> rest = args.positionals();
+  if (rest.size() != 1) throw UsageError{"run: expected one CONFIG file"};
+  try {
+    std::size_t used = 0;
+    options.jobs = std::stoi(jobs, &used);
+    if (used != jobs.size()) throw std::invalid_argument(jobs);
+  } catch (const std::exception&) {
+    throw UsageError{"--jobs: expected a number, got '" + jobs + "'"};
+  }
+  if (!options.run_id.empty() &&
+      options.run_id.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
+          std::string::npos)
+    throw UsageError{"--run-id: use letters, digits, '_', '-', '.'"};
+
+  const Experiment ex = load_experiment(rest[0], overrides);
+  const RunnerSummary s = run_experiment(ex, options);
+  std::cout << s.table_markdown << "\n";
+  std::cerr << ex.name << ": " << s.succeeded << " ran, " << s.skipped << " already done, " << s.failed
+            << " failed; results in " << s.directory << "\n";
+  return s.failed == 0 ? 0 : 1;
+}
+
+}  // namespace dtsl::cli

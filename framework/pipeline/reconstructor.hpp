@@ -1,0 +1,53 @@
+// A reconstructor takes points (in the [-1,1]^3 frame, normals optional) and returns a mesh plus a record
+// of its stages. The paper's method and every baseline are reconstructors, so one experiment compares
+// them on the same data, measured the same way.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "framework/config/options.hpp"
+#include "framework/core/types.hpp"
+#include "framework/registry/registry.hpp"
+
+namespace dtsl {
+
+/// One stage of a reconstruction: its short name (the paper's Table 1 uses TL, MT, D-Map, B-Evl), wall
+/// time, the mesh it produced if any (written out and measured like the final one), and a free-form
+/// summary (counts, convergence history).
+struct StageRecord {
+  std::string name;
+  double seconds = 0.0;
+  std::optional<TriangleMesh> mesh;
+  std::string mesh_label;  ///< e.g. "MI", "MD", "MS": the column label of this stage's mesh errors
+  nlohmann::json summary = nlohmann::json::object();
+};
+
+struct ReconstructionResult {
+  TriangleMesh mesh;                ///< the final mesh
+  std::vector<StageRecord> stages;  ///< in execution order
+  nlohmann::json summary = nlohmann::json::object();  ///< e.g. {"normals_source": "ground_truth"}
+};
+
+/// What a run gives a reconstructor besides the points.
+struct RunContext {
+  std::uint64_t seed = 1;
+  int threads = 1;
+};
+
+class Reconstructor {
+ public:
+  virtual ~Reconstructor() = default;
+  virtual Options& options() = 0;
+  /// Throws AlgorithmError for input it cannot handle (too few points, too large, no normals where
+  /// they are required), naming the problem.
+  virtual ReconstructionResult reconstruct(const PointCloud& points, const RunContext& context) = 0;
+};
+
+Registry<Reconstructor>& reconstructors();
+
+}  // namespace dtsl

@@ -1,0 +1,80 @@
+#include "framework/pipeline/run_one.hpp"
+
+#include <filesystem>
+
+#include "framework/config/yaml_options.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
+#include "framework/io/io.hpp"
+#include "framework/metrics/metrics.hpp"
+#include "framework/pipeline/reconstructor.hpp"
+
+namespace dtsl {
+
+namespace fs = std::filesystem;
+
+nlohmann::json measure_mesh(const TriangleMesh& mesh, const Dataset& dataset, const MetricsOptions* metrics,
+                            std::uint64_t seed) {
+  nlohmann::json j;
+  j["mesh"] = to_json(mesh_stats(mesh));
+  if (!mesh.faces.empty()) {
+    j["point_errors"] = to_json(point_errors(dataset.points.points, mesh));
+    if (metrics && dataset.ground_truth)
+      j["surface"] = to_json(compare_surfaces(mesh, *dataset.ground_truth, static_cast<std::size_t>(metrics->samples),
+                                              metrics->fscore_tau_ratio, seed));
+  }
+  return j;
+}
+
+nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
+                           std::uint64_t seed, const std::string& run_dir) {
+  nlohmann::json record;
+  record["run"] = run.id;
+  record["dataset"] = run.dataset_name;
+  record["pipeline"] = run.pipeline_name;
+  record["type"] = run.pipeline_type;
+  record["sweep"] = nlohmann::json::object();
+  for (const auto& [k, v] : run.sweep) record["sweep"][k] = v;
+  record["seed"] = seed;
+  record["np"] = dataset.points.size();
+  record["dataset_has_ground_truth"] = dataset.ground_truth.has_value();
+  Stopwatch total;
+  try {
+    auto pipeline = reconstructors().create(run.pipeline_type, run.id);
+    apply_yaml(pipeline->options(), run.pipeline["options"], run.id + ".options");
+    record["options"] = to_json(pipeline->options());
+    RunContext context;
+    context.seed = seed;
+    Stopwatch clock;
+    ReconstructionResult result = pipeline->reconstruct(dataset.points, context);
+    record["time_total"] = clock.seconds();
+    record["peak_memory_mib"] = peak_memory_mib();
+    record["summary"] = result.summary;
+
+    fs::create_directories(run_dir);
+    nlohmann::json stages = nlohmann::json::array();
+    for (const StageRecord& s : result.stages) {
+      nlohmann::json js = {{"name", s.name}, {"seconds", s.seconds}, {"summary", s.summary}};
+      if (s.mesh) {
+        const std::string label = s.mesh_label.empty() ? s.name : s.mesh_label;
+        js["mesh_label"] = label;
+        js["file"] = "stage_" + label + ".ply";
+        write_mesh(run_dir + "/stage_" + label + ".ply", *s.mesh);
+        js["measures"] = measure_mesh(*s.mesh, dataset, nullptr, seed);
+      }
+      stages.push_back(js);
+    }
+    record["stages"] = stages;
+    write_mesh(run_dir + "/final.ply", result.mesh);
+    record["final"] = measure_mesh(result.mesh, dataset, &metrics, seed);
+    record["status"] = "ok";
+  } catch (const std::exception& e) {
+    // A failed run is a result: its table row says why (a bad_alloc is an out-of-memory failure).
+    record["status"] = "failed";
+    record["error"] = e.what();
+  }
+  record["time_wall"] = total.seconds();
+  return record;
+}
+
+}  // namespace dtsl

@@ -1,0 +1,236 @@
+#include "framework/pipeline/runner.hpp"
+
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "framework/core/atomic_file.hpp"
+#include "framework/core/error.hpp"
+#include "framework/pipeline/dataset_cache.hpp"
+#include "framework/pipeline/provenance.hpp"
+#include "framework/pipeline/run_one.hpp"
+#include "framework/pipeline/tables.hpp"
+
+namespace dtsl {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string dump_yaml(const YAML::Node& n) {
+  YAML::Emitter e;
+  e << n;
+  return std::string(e.c_str()) + "\n";
+}
+
+bool run_finished(const std::string& run_dir) {
+  std::ifstream in(run_dir + "/metrics.json");
+  if (!in) return false;
+  try {
+    return json::parse(in).value("status", std::string()) == "ok";
+  } catch (const json::exception&) {
+    return false;  // unreadable: run it again
+  }
+}
+
+void write_record(const std::string& run_dir, const json& record) {
+  fs::create_directories(run_dir);
+  write_file_atomically(run_dir + "/metrics.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });
+}
+
+/// Interrupts (Ctrl-C) stop the parent's loop; the children are killed and nothing finished is lost.
+volatile sig_atomic_t g_interrupted = 0;
+void on_signal(int) { g_interrupted = 1; }
+
+struct Child {
+  pid_t pid;
+  std::size_t index;
+  std::chrono::steady_clock::time_point started;
+};
+
+void prepare_datasets(const Experiment& ex, const std::string& dir, bool progress) {
+  std::set<std::string> done;
+  for (const RunSpec& run : ex.runs) {
+    if (!done.insert(run.dataset_key).second) continue;
+    const std::string ddir = dir + "/datasets/" + run.dataset_key;
+    if (dataset_complete(ddir)) continue;
+    if (progress) std::cerr << "dataset " << run.dataset_key << " ..." << std::flush;
+    DatasetSpec spec = parse_dataset(run.dataset, run.dataset_key);
+    const Dataset d = build_dataset(spec, ex.seed);
+    write_dataset(ddir, d);
+    if (progress) std::cerr << " " << d.points.size() << " points\n";
+  }
+}
+
+}  // namespace
+
+RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options) {
+  if (options.jobs < 1 || options.jobs > 256) throw ConfigError("--jobs: must be in [1, 256]");
+  RunnerSummary summary;
+  const std::string run_id = options.run_id.empty() ? config_hash(ex.resolved) : options.run_id;
+  const std::string dir = options.results_root + "/" + ex.name + "/" + run_id;
+  summary.directory = dir;
+  summary.total = ex.runs.size();
+  const std::string config_text = dump_yaml(ex.resolved);
+
+  const bool existed = fs::exists(dir);
+  if (existed) {
+    std::ifstream in(dir + "/config.yaml");
+    std::string previous((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in || previous != config_text)
+      throw ConfigError(dir + ": holds the results of a different configuration; choose another --run-id");
+  }
+  try {
+    fs::create_directories(dir + "/runs");
+    write_file_atomically(dir + "/config.yaml", [&](std::ostream& o) { o << config_text; });
+    json prov = provenance(options.command_line);
+    prov["seed"] = ex.seed;
+    prov["run_id"] = run_id;
+    write_file_atomically(dir + "/provenance.json", [&](std::ostream& o) { o << prov.dump(2) << "\n"; });
+    prepare_datasets(ex, dir, options.progress);
+  } catch (...) {
+    if (!existed) {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      // Remove the experiment folder too if this call made it and it is now empty.
+      fs::remove(fs::path(dir).parent_path(), ec);
+    }
+    throw;
+  }
+
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+    if (run_finished(dir + "/runs/" + ex.runs[i].id)) ++summary.skipped;
+    else todo.push_back(i);
+  }
+  if (options.progress)
+    std::cerr << ex.name << ": " << ex.runs.size() << " runs, " << summary.skipped << " already done, writing to "
+              << dir << "\n";
+
+  struct sigaction sa{}, old_int{}, old_term{};
+  sa.sa_handler = on_signal;
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+  g_interrupted = 0;
+
+  std::map<pid_t, Child> running;
+  std::size_t next = 0, finished = 0;
+  auto finish = [&](const Child& c, const json& record) {
+    ++finished;
+    const RunSpec& run = ex.runs[c.index];
+    const bool ok = record.value("status", std::string()) == "ok";
+    ok ? ++summary.succeeded : ++summary.failed;
+    if (options.progress) {
+      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - c.started).count();
+      std::fprintf(stderr, "[%zu/%zu] %s: %s (%.1f s)%s%s\n", finished, todo.size(), run.id.c_str(),
+                   ok ? "ok" : record.value("status", std::string("failed")).c_str(), secs, ok ? "" : " — ",
+                   ok ? "" : record.value("error", std::string()).c_str());
+    }
+  };
+
+  while ((next < todo.size() || !running.empty()) && !g_interrupted) {
+    while (next < todo.size() && running.size() < static_cast<std::size_t>(options.jobs)) {
+      const std::size_t index = todo[next++];
+      const RunSpec& run = ex.runs[index];
+      const std::string run_dir = dir + "/runs/" + run.id;
+      std::fflush(nullptr);
+      const pid_t pid = ::fork();
+      if (pid < 0) throw Error("cannot start a run: fork failed");
+      if (pid == 0) {
+        ::signal(SIGINT, SIG_DFL);
+        ::signal(SIGTERM, SIG_DFL);
+        int code = 0;
+        try {
+          const Dataset d = read_dataset(dir + "/datasets/" + run.dataset_key);
+          json record = execute_run(run, d, ex.metrics, ex.seed, run_dir);
+          record["order"] = index;
+          write_record(run_dir, record);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "%s: %s\n", run.id.c_str(), e.what());
+          code = 3;
+        }
+        std::fflush(nullptr);
+        ::_exit(code);
+      }
+      running[pid] = Child{pid, index, std::chrono::steady_clock::now()};
+    }
+    int status = 0;
+    rusage usage{};
+    const pid_t done = ::wait4(-1, &status, WNOHANG, &usage);
+    if (done > 0 && running.count(done)) {
+      const Child c = running[done];
+      running.erase(done);
+      const RunSpec& run = ex.runs[c.index];
+      const std::string run_dir = dir + "/runs/" + run.id;
+      json record;
+      std::ifstream in(run_dir + "/metrics.json");
+      bool have = false;
+      if (in && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        try {
+          record = json::parse(in);
+          have = true;
+        } catch (const json::exception&) {
+        }
+      }
+      if (!have) {
+        record = {{"run", run.id}, {"dataset", run.dataset_name}, {"pipeline", run.pipeline_name},
+                  {"type", run.pipeline_type}, {"order", c.index}, {"status", "failed"}};
+        record["sweep"] = json::object();
+        for (const auto& [k, v] : run.sweep) record["sweep"][k] = v;
+        record["error"] = WIFSIGNALED(status) ? "crashed with signal " + std::to_string(WTERMSIG(status)) +
+                                                    (WTERMSIG(status) == SIGKILL ? " (killed: out of memory or timeout)" : "")
+                                              : "exited with code " + std::to_string(WEXITSTATUS(status));
+        write_record(run_dir, record);
+      }
+      finish(c, record);
+      continue;
+    }
+    // Enforce the per-run time limit.
+    if (ex.timeout_seconds > 0)
+      for (auto& [pid, c] : running)
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - c.started).count() > ex.timeout_seconds) {
+          ::kill(pid, SIGKILL);
+          ::waitpid(pid, &status, 0);
+          const RunSpec& run = ex.runs[c.index];
+          json record = {{"run", run.id}, {"dataset", run.dataset_name}, {"pipeline", run.pipeline_name},
+                         {"type", run.pipeline_type}, {"order", c.index}, {"status", "timeout"},
+                         {"error", "exceeded timeout_seconds = " + std::to_string(ex.timeout_seconds)}};
+          record["sweep"] = json::object();
+          for (const auto& [k, v] : run.sweep) record["sweep"][k] = v;
+          write_record(dir + "/runs/" + run.id, record);
+          const Child copy = c;
+          running.erase(pid);
+          finish(copy, record);
+          break;
+        }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (g_interrupted) {
+    for (auto& [pid, c] : running) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+    sigaction(SIGINT, &old_int, nullptr);
+    sigaction(SIGTERM, &old_term, nullptr);
+    throw Error("interrupted: " + std::to_string(summary.succeeded + summary.skipped) + " of " +
+                std::to_string(summary.total) + " runs are finished in " + dir + "; run the same command again to resume");
+  }
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+
+  summary.table_markdown = write_tables(dir, ex.table_columns, ex.name + " (" + run_id + ")");
+  return summary;
+}
+
+}  // namespace dtsl

@@ -1,0 +1,33 @@
+// `dtsl run`: prepares the datasets of an experiment, runs every (dataset, pipeline, sweep value) in a
+// child process of its own — a crash or an out-of-memory in one method costs that run, not the sweep,
+// and each run's peak memory is its own — and writes the tables. A result directory is resumable: runs
+// whose metrics.json says "ok" are skipped when the same experiment is started again.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "framework/pipeline/experiment.hpp"
+
+namespace dtsl {
+
+struct RunnerOptions {
+  std::string results_root = "results";  ///< results/<experiment>/<run_id>/
+  std::string run_id;                    ///< default: config_hash(resolved config)
+  int jobs = 1;                          ///< runs in parallel (child processes)
+  bool progress = true;                  ///< progress lines on stderr
+  std::vector<std::string> command_line;  ///< for provenance.json
+};
+
+struct RunnerSummary {
+  std::string directory;
+  std::size_t total = 0, skipped = 0, succeeded = 0, failed = 0;
+  std::string table_markdown;
+};
+
+/// Throws ConfigError/FileError/AlgorithmError (datasets) before any run starts; then never throws for
+/// a failed run (it is recorded). On an error before the first run, a directory this call created is
+/// removed again.
+RunnerSummary run_experiment(const Experiment& experiment, const RunnerOptions& options);
+
+}  // namespace dtsl

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# One-step set-up of dtsl on Debian 12 (bookworm): installs every dependency with apt-get, fetches the
+# model data (Debian's libcgal-demo) into the user cache, configures and builds into build/.
+# Run from anywhere; as root, or as a user with sudo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  libeigen3-dev libceres-dev libpcl-dev libcgal-dev
+  nlohmann-json3-dev libyaml-cpp-dev catch2
+)
+echo "== installing: ${PACKAGES[*]}"
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${PACKAGES[@]}"
+
+echo "== fetching model data"
+scripts/fetch_data.sh
+
+echo "== building (build/)"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j2
+echo "== done: run the tests with  ctest --test-dir build --output-on-failure"

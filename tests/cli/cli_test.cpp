@@ -1,0 +1,207 @@
+// The command line end to end: a tiny experiment runs, resumes and re-tables; bad input of every kind
+// exits non-zero with a message naming the problem and leaves no output behind.
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int code;
+  std::string output;
+};
+
+Outcome dtsl(const std::string& arguments) {
+  const std::string command = std::string(DTSL_EXECUTABLE) + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("dtsl_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  static int& counter() {
+    static int c = 0;
+    return c;
+  }
+  std::string file(const std::string& name, const std::string& content) const {
+    const fs::path p = path / name;
+    std::ofstream(p) << content;
+    return p.string();
+  }
+};
+
+const char* kTinyExperiment = R"(experiment: tiny
+seed: 3
+metrics: {samples: 2000}
+datasets:
+  - name: ball
+    shape: {type: sphere}
+    sampler: {type: area, count: 800}
+pipelines:
+  - name: poisson
+    type: pcl_poisson
+    options: {depth: 5}
+)";
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("dtsl help and unknown commands") {
+  CHECK(dtsl("help").code == 0);
+  const Outcome o = dtsl("frobnicate");
+  CHECK(o.code == 2);
+  CHECK(contains(o.output, "frobnicate"));
+}
+
+TEST_CASE("dtsl list names every registered kind and the baselines") {
+  const Outcome o = dtsl("list");
+  REQUIRE(o.code == 0);
+  for (const char* name : {"pcl_poisson", "pcl_mc_hoppe", "pcl_mc_rbf", "pcl_gp3", "pcl_grid", "sphere", "noise"})
+    CHECK(contains(o.output, name));
+  CHECK(dtsl("list pipeline").code == 0);
+  CHECK(dtsl("list nonsense").code == 2);
+}
+
+TEST_CASE("a tiny experiment runs, resumes and regenerates its tables") {
+  TempDir tmp;
+  const std::string config = tmp.file("tiny.yaml", kTinyExperiment);
+  const std::string results = (tmp.path / "results").string();
+  const Outcome first = dtsl("run " + config + " --results " + results + " --run-id r1");
+  INFO(first.output);
+  REQUIRE(first.code == 0);
+  const fs::path dir = tmp.path / "results" / "tiny" / "r1";
+  for (const char* f : {"config.yaml", "provenance.json", "table.md", "table.csv", "table.tex",
+                        "runs/ball__poisson/metrics.json", "runs/ball__poisson/final.ply",
+                        "datasets/ball/points.ply", "datasets/ball/ground_truth.ply"})
+    CHECK(fs::exists(dir / f));
+  std::ifstream md(dir / "table.md");
+  const std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  CHECK(contains(table, "ball"));
+  CHECK(contains(table, "poisson"));
+
+  // Started again: the finished run is skipped, not redone.
+  const auto stamp = fs::last_write_time(dir / "runs/ball__poisson/metrics.json");
+  const Outcome again = dtsl("run " + config + " --results " + results + " --run-id r1");
+  INFO(again.output);
+  CHECK(again.code == 0);
+  CHECK(contains(again.output, "1 already done"));
+  CHECK(fs::last_write_time(dir / "runs/ball__poisson/metrics.json") == stamp);
+
+  // A run whose record is missing is redone; the tables come back from the JSON alone.
+  fs::remove(dir / "table.md");
+  CHECK(dtsl("table " + dir.string()).code == 0);
+  CHECK(fs::exists(dir / "table.md"));
+
+  // The same run-id with a different configuration is refused.
+  const Outcome clash = dtsl("run " + config + " --results " + results + " --run-id r1 --set seed=4");
+  CHECK(clash.code == 1);
+  CHECK(contains(clash.output, "different configuration"));
+}
+
+TEST_CASE("bad experiment files are rejected by name and leave nothing behind") {
+  TempDir tmp;
+  const std::string results = (tmp.path / "results").string();
+  struct Case {
+    const char* what;
+    std::string yaml;
+    const char* expected;
+  };
+  const std::string base = kTinyExperiment;
+  auto replace = [&](const std::string& from, const std::string& to) {
+    std::string s = base;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  const std::vector<Case> cases = {
+      {"syntax error", "experiment: [unclosed\n", "YAML syntax error"},
+      {"unknown top-level key", base + "colour: red\n", "colour"},
+      {"unknown pipeline", replace("type: pcl_poisson", "type: pcl_nonexistent"), "pcl_nonexistent"},
+      {"unknown option", replace("{depth: 5}", "{depht: 5}"), "depht"},
+      {"wrong type", replace("{depth: 5}", "{depth: deep}"), "depth"},
+      {"out of range", replace("{depth: 5}", "{depth: 99}"), "depth"},
+      {"unknown shape", replace("type: sphere", "type: dodecahedron"), "dodecahedron"},
+      {"empty file", "", "expected"},
+      {"no datasets", "experiment: x\npipelines: [{type: pcl_poisson}]\n", "datasets"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    const std::string config = tmp.file("bad.yaml", c.yaml);
+    const Outcome o = dtsl("run " + config + " --results " + results);
+    INFO(o.output);
+    CHECK(o.code != 0);
+    CHECK(o.code < 128);  // an error exit, not a crash
+    CHECK(contains(o.output, c.expected));
+    CHECK(!fs::exists(tmp.path / "results" / "tiny"));
+  }
+  const Outcome missing = dtsl("run " + (tmp.path / "nope.yaml").string());
+  CHECK(missing.code == 1);
+  CHECK(contains(missing.output, "nope.yaml"));
+  const Outcome bad_set = dtsl("run " + tmp.file("ok.yaml", kTinyExperiment) + " --results " + results +
+                               " --set pipelines.poisson.options.depth=-3");
+  CHECK(bad_set.code == 1);
+  CHECK(contains(bad_set.output, "depth"));
+  CHECK(!fs::exists(tmp.path / "results" / "tiny"));
+}
+
+TEST_CASE("dtsl reconstruct: one file in, one mesh out; bad files rejected without output") {
+  TempDir tmp;
+  // A small sphere of points with normals, written as XYZ.
+  std::string xyz;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) {
+      const double th = 3.14159265 * (i + 0.5) / 40, ph = 2 * 3.14159265 * j / 40;
+      const double x = std::sin(th) * std::cos(ph), y = std::sin(th) * std::sin(ph), z = std::cos(th);
+      xyz += std::to_string(10 + 3 * x) + " " + std::to_string(3 * y) + " " + std::to_string(3 * z) + " " +
+             std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+    }
+  const std::string in = tmp.file("ball.xyz", xyz);
+  const std::string out = (tmp.path / "ball.ply").string();
+  const Outcome ok = dtsl("reconstruct " + in + " " + out + " --set depth=5");
+  INFO(ok.output);
+  REQUIRE(ok.code == 0);
+  CHECK(fs::file_size(out) > 0);
+
+  struct Case {
+    std::string content;
+    const char* expected;
+  };
+  const std::vector<Case> bad = {{"", "bad.xyz"}, {"1 2 nan\n0 0 0\n1 1 1\n", "bad.xyz"}, {"1 2\n", "bad.xyz"},
+                                 {"0 0 0\n", "bad.xyz"}};
+  for (const Case& c : bad) {
+    const std::string path = tmp.file("bad.xyz", c.content);
+    const std::string target = (tmp.path / "bad_out.ply").string();
+    const Outcome o = dtsl("reconstruct " + path + " " + target);
+    INFO(c.content << o.output);
+    CHECK(o.code == 1);
+    CHECK(contains(o.output, c.expected));
+    CHECK(!fs::exists(target));
+  }
+  CHECK(dtsl("reconstruct " + (tmp.path / "missing.ply").string() + " " + out).code == 1);
+  const Outcome unknown = dtsl("reconstruct " + in + " " + out + " --pipeline nope");
+  CHECK(unknown.code == 1);
+  CHECK(contains(unknown.output, "nope"));
+  CHECK(dtsl("reconstruct " + in + " " + (tmp.path / "x.xyz").string()).code == 2);
+  const Outcome badset = dtsl("reconstruct " + in + " " + out + " --set depth=abc");
+  CHECK(badset.code == 1);
+  CHECK(contains(badset.output, "depth"));
+}
