@@ -49,7 +49,11 @@ class YamlReader final : public FieldVisitor {
   }
   void field(const char* name, int& value, const char* /*doc*/) override {
     if (const YAML::Node n = take(name)) {
-      const double v = parse_double(key(name), n);
+      double v = 0.5;
+      try {
+        v = parse_double(key(name), n);
+      } catch (const ConfigError&) {
+      }
       if (v != std::floor(v) || std::abs(v) > 2e9) type_error(key(name), "an integer", n);
       value = static_cast<int>(v);
     }

@@ -42,15 +42,20 @@ void set_yaml_path(YAML::Node& root, const std::string& path, const YAML::Node& 
     const std::string here = walked.empty() ? seg : walked + "." + seg;
     if (node.IsSequence()) {
       YAML::Node next;
+      bool found = false;
       if (is_index(seg)) {
         const std::size_t k = std::stoul(seg);
         if (k >= node.size())
           throw ConfigError(here + ": index out of range (the list has " + std::to_string(node.size()) + " entries)");
         next = node[k];
+        found = true;
       } else {
         for (std::size_t k = 0; k < node.size(); ++k)
-          if (node[k].IsMap() && node[k]["name"] && node[k]["name"].Scalar() == seg) next = node[k];
-        if (!next) throw ConfigError(here + ": no entry named '" + seg + "' in '" + walked + "'");
+          if (node[k].IsMap() && node[k]["name"] && node[k]["name"].Scalar() == seg) {
+            next = node[k];
+            found = true;
+          }
+        if (!found) throw ConfigError(here + ": no entry named '" + seg + "' in '" + walked + "'");
       }
       if (last) throw ConfigError(here + ": cannot replace a whole list entry; set one of its keys");
       node.reset(next);

@@ -59,21 +59,21 @@ TEST_CASE("apply_yaml sets fields and keeps defaults") {
 }
 
 TEST_CASE("apply_yaml errors name the key path and the rule") {
-  ExampleOptions o;
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{dpeth: 5}"), "pipelines[0].options"); }),
+  ExampleOptions o;  // a failed apply leaves it half-set; each case below starts from a fresh one
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{dpeth: 5}"), "pipelines[0].options"); }),
              Catch::Contains("pipelines[0].options.dpeth") && Catch::Contains("unknown key") &&
                  Catch::Contains("depth"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{depth: deep}"), "x"); }),
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{depth: deep}"), "x"); }),
              Catch::Contains("x.depth") && Catch::Contains("integer"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{depth: 2.5}"), "x"); }), Catch::Contains("x.depth"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{depth: 40}"), "x"); }),
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{depth: 2.5}"), "x"); }), Catch::Contains("x.depth"));
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{depth: 40}"), "x"); }),
              Catch::Contains("x.depth") && Catch::Contains("[1, 12]") && Catch::Contains("40"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{weight: .nan}"), "x"); }), Catch::Contains("x.weight"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{mode: medium}"), "x"); }),
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{weight: .nan}"), "x"); }), Catch::Contains("x.weight"));
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{mode: medium}"), "x"); }),
              Catch::Contains("x.mode") && Catch::Contains("fast, slow"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{manifold: 3}"), "x"); }), Catch::Contains("x.manifold"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("[1, 2]"), "x"); }), Catch::Contains("expected a map"));
-  CHECK_THAT(message_of([&] { apply_yaml(o, YAML::Load("{depth: }"), "x"); }), Catch::Contains("x.depth"));
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{manifold: 3}"), "x"); }), Catch::Contains("x.manifold"));
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("[1, 2]"), "x"); }), Catch::Contains("expected a map"));
+  CHECK_THAT(message_of([&] { o = ExampleOptions(); apply_yaml(o, YAML::Load("{depth: }"), "x"); }), Catch::Contains("x.depth"));
 }
 
 TEST_CASE("apply_assignment parses textual values like YAML") {
