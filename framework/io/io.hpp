@@ -22,6 +22,10 @@ struct WriteOptions {
   bool binary = true;  ///< PLY and PCD: binary little-endian; ignored by text-only formats
 };
 
+/// Writers keep normals when there is one per point/vertex. PLY stores doubles and text formats the
+/// shortest decimal that reads back exactly, so a round trip is lossless; OFF with normals is written
+/// as NOFF, OBJ as v/vn with "f a//a ..."; PCD stores float32 (PCL's convention). Refuses (FileError,
+/// nothing written) NaN/infinite coordinates, face indices out of range, and meshes to .xyz/.pcd.
 void write_points(const std::string& path, const PointCloud& cloud, const WriteOptions& options = {});
 void write_mesh(const std::string& path, const TriangleMesh& mesh, const WriteOptions& options = {});
 
