@@ -10,7 +10,8 @@
 // - it needs more than 10 points in a cell's (2 padding_size + 1)^3 neighbourhood to place a surface
 //   point there, so a resolution far below the point spacing yields nothing;
 // - nearest_neighbors is stored but unused: its k-nearest-neighbour code path is commented out;
-// - it emits one vertex per quad corner: we weld them.
+// - it emits one vertex per quad corner: we weld them;
+// - its quads' winding is arbitrary: we orient each triangle by the nearest input point's normal.
 #include <pcl/search/kdtree.h>
 #include <pcl/surface/grid_projection.h>
 
@@ -111,10 +112,30 @@ class GridBaseline final : public PclBaseline {
     // Quad corners are copies of the same stored surface point: weld at float rounding level.
     const double tolerance = 1e-6 * o.resolution;
     CleanupCounts counts;
-    TriangleMesh mesh = soup_to_mesh(to_soup(vertices, polygons), tolerance, kFlipGrid, &counts);
+    TriangleMesh mesh = soup_to_mesh(to_soup(vertices, polygons), tolerance, false, &counts);
+    // PCL winds its quads arbitrarily (the signed volume of a sphere comes out near 0): orient each
+    // triangle like the normal of the input point nearest its centroid.
+    std::size_t flipped = 0;
+    guarded_pcl_call(name(), [&] {
+      pcl::Indices nearest(1);
+      std::vector<float> sqr_distances(1);
+      for (Face& f : mesh.faces) {
+        const Vec3& a = mesh.vertices[f[0]];
+        const Vec3& b = mesh.vertices[f[1]];
+        const Vec3& c = mesh.vertices[f[2]];
+        pcl::PointNormal q;
+        q.getVector3fMap() = ((a + b + c) / 3.0).cast<float>();
+        if (tree->nearestKSearch(q, 1, nearest, sqr_distances) < 1) continue;
+        if ((b - a).cross(c - a).dot(cloud.normals[nearest[0]]) < 0.0) {
+          std::swap(f[1], f[2]);
+          ++flipped;
+        }
+      }
+    });
     const double n = cells_per_axis(cloud);
     summary["grid_cells"] = n * n * n;
     summary["cleanup"] = counts.to_json();
+    summary["triangles_reoriented"] = flipped;
     return mesh;
   }
 
@@ -125,7 +146,6 @@ class GridBaseline final : public PclBaseline {
   }
 
  private:
-  static constexpr bool kFlipGrid = false;
   GridOptions options_;
 };
 

@@ -27,9 +27,9 @@
 namespace dtsl::baselines {
 namespace {
 
-// PCL's marching cubes tables produce triangles whose winding faces the inside (the side where the
-// function is below the iso level); we flip them so normals point outward, like Poisson's.
-constexpr bool kFlipMarchingCubes = true;
+// PCL's marching cubes triangles already face outward (towards larger function values), like
+// Poisson's: checked by the signed volume in tests/baselines.
+constexpr bool kFlipMarchingCubes = false;
 
 // Options both marching cubes share.
 struct GridOptions {

@@ -19,8 +19,9 @@
 #include <boost/iterator/counting_iterator.hpp>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <iterator>
+#include <limits>
+#include <numeric>
 #include <string>
 #include <tuple>
 
@@ -116,18 +117,34 @@ std::vector<Vec3> estimate_oriented_normals(const std::vector<Vec3>& points, int
                                             std::size_t* unoriented) {
   const std::string what = use_jet ? "jet_mst normals" : "pca_mst normals";
   if (k < 3) throw AlgorithmError(what + ": k must be at least 3, got " + std::to_string(k));
-  if (points.size() < 3 || points.size() < static_cast<std::size_t>(k) + 1)
-    throw AlgorithmError(what + ": " + std::to_string(points.size()) + " points are too few for k = " +
-                         std::to_string(k) + " neighbours (need at least " + std::to_string(std::max(3, k + 1)) +
-                         ")");
-  std::vector<Item> items;
-  items.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec3& p = points[i];
-    if (!p.allFinite())
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite())
       throw AlgorithmError(what + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
-    items.emplace_back(K::Point_3(p.x(), p.y(), p.z()), K::Vector_3(0, 0, 0), i);
+
+  // Exact duplicates (mesh vertices repeated along seams, say) can make a neighbourhood of coincident
+  // points, on which CGAL's jet fit divides by zero and crashes: estimate on the distinct points and
+  // copy each normal to the duplicates.
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto less = [&](std::size_t a, std::size_t b) {
+    const Vec3 &p = points[a], &q = points[b];
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+  };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return less(a, b) || (!less(b, a) && a < b); });
+  std::vector<std::size_t> distinct_of(points.size());
+  std::vector<Item> items;
+  for (std::size_t j = 0; j < order.size(); ++j) {
+    const std::size_t i = order[j];
+    if (j == 0 || less(order[j - 1], i)) {
+      const Vec3& p = points[i];
+      items.emplace_back(K::Point_3(p.x(), p.y(), p.z()), K::Vector_3(0, 0, 0), items.size());
+    }
+    distinct_of[i] = items.size() - 1;
   }
+  if (items.size() < 3 || items.size() < static_cast<std::size_t>(k) + 1)
+    throw AlgorithmError(what + ": " + std::to_string(items.size()) + " distinct points (of " +
+                         std::to_string(points.size()) + ") are too few for k = " + std::to_string(k) +
+                         " neighbours (need at least " + std::to_string(std::max(3, k + 1)) + ")");
 
   const auto np = CGAL::parameters::point_map(PointMap()).normal_map(NormalMap());
   const unsigned int kk = static_cast<unsigned int>(k);
@@ -141,8 +158,9 @@ std::vector<Vec3> estimate_oriented_normals(const std::vector<Vec3>& points, int
     const K::Vector_3& n = std::get<1>(it);
     const Vec3 v(n.x(), n.y(), n.z());
     if (!v.allFinite() || v.squaredNorm() == 0.0)
-      throw AlgorithmError(what + ": no normal could be fitted at point " + std::to_string(std::get<2>(it)) +
-                           " (its " + std::to_string(k) + " neighbours coincide or are collinear)");
+      throw AlgorithmError(what + ": no normal could be fitted at (" + std::to_string(std::get<0>(it).x()) + ", " +
+                           std::to_string(std::get<0>(it).y()) + ", " + std::to_string(std::get<0>(it).z()) +
+                           "): its " + std::to_string(k) + " neighbours are degenerate");
   }
   // CGAL seeds at the highest point with +z (outward for a closed surface) and propagates along the
   // minimum spanning tree of the k-neighbour graph weighted by 1 - |n_i . n_j|. Points of other graph
@@ -157,11 +175,13 @@ std::vector<Vec3> estimate_oriented_normals(const std::vector<Vec3>& points, int
   }
   if (unoriented) *unoriented = static_cast<std::size_t>(std::distance(first, items.end()));
 
-  std::vector<Vec3> normals(points.size());
+  std::vector<Vec3> distinct_normals(items.size());
   for (const Item& it : items) {
     const K::Vector_3& n = std::get<1>(it);
-    normals[std::get<2>(it)] = Vec3(n.x(), n.y(), n.z()).normalized();
+    distinct_normals[std::get<2>(it)] = Vec3(n.x(), n.y(), n.z()).normalized();
   }
+  std::vector<Vec3> normals(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) normals[i] = distinct_normals[distinct_of[i]];
   return normals;
 }
 

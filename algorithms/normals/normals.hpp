@@ -20,8 +20,12 @@ struct NormalSourceOptions final : Options {
 };
 
 /// Unit normals by jet fitting (or PCA) over k neighbours, oriented consistently by MST propagation and
-/// pointing outward (the point of largest z gets +z, as CGAL does). Points whose orientation could not
-/// be propagated keep an unoriented normal; their count is returned in `unoriented` if given.
+/// pointing outward (the point of largest z gets +z, as CGAL does). A part the k-neighbour graph does
+/// not reach is oriented from its point nearest to the oriented ones if it continues their surface,
+/// else (a separate object) from its own highest point. Exact duplicate points share one normal. Points
+/// whose orientation could not be propagated keep an unoriented normal; their count is returned in
+/// `unoriented` if given. Throws AlgorithmError for k < 3, fewer than max(3, k+1) distinct points, a
+/// non-finite point, or a neighbourhood too degenerate to fit.
 std::vector<Vec3> estimate_oriented_normals(const std::vector<Vec3>& points, int k, bool use_jet,
                                             std::size_t* unoriented = nullptr);
 

@@ -49,6 +49,15 @@ NewtonOptions MarchingCubesOptions::newton() const {
 
 namespace {
 
+// Where the level set passes (almost) through a grid node, every edge around the node gets a vertex
+// (almost) on it: a cluster of near-coincident vertices whose tiny triangles cross each other under
+// the slightest perturbation. A sample within kOffZero x (its largest difference to an axis
+// neighbour, ~ |grad f| h) of zero is therefore moved to +kOffZero x that difference (outside).
+// Vertices then keep a distance of about kOffZero / 4 of an edge from the nodes, and the surface
+// moves by at most ~kOffZero h there. kEdgeClamp keeps refined roots off the nodes by the same margin.
+constexpr double kOffZero = 0.005;
+constexpr double kEdgeClamp = kOffZero / 4;
+
 struct Grid {
   Vec3 origin;
   double h = 0.0;
@@ -204,8 +213,9 @@ Vec3 edge_root(const ImplicitFunction& f, const EdgeVertex& e) {
     if (t1 - t0 < 1e-12) break;
     t = (t0 * v1 - t1 * v0) / (v1 - v0);
   }
-  // Off the very end points: a vertex on a grid node would give zero-length edges.
-  t = std::clamp(t, 1e-6, 1.0 - 1e-6);
+  // The root of the true f may lie nearer a node than the adjusted samples say (see
+  // keep_samples_off_zero): keep the same margin.
+  t = std::clamp(t, kEdgeClamp, 1.0 - kEdgeClamp);
   return e.pa + t * (e.pb - e.pa);
 }
 
@@ -261,6 +271,23 @@ std::size_t boundary_loops(const TriangleMesh& mesh) {
   return loops;
 }
 
+void keep_samples_off_zero(const Grid& g, std::vector<double>& values) {
+  std::vector<double> out(values);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const double v = values[static_cast<std::size_t>(g.index(i, j, k))];
+        double spread = 0.0;
+        const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+        for (const auto& n : nb)
+          if (n[0] >= 0 && n[1] >= 0 && n[2] >= 0 && n[0] < g.nx && n[1] < g.ny && n[2] < g.nz)
+            spread = std::max(spread, std::abs(values[static_cast<std::size_t>(g.index(n[0], n[1], n[2]))] - v));
+        if (std::abs(v) < kOffZero * spread) out[static_cast<std::size_t>(g.index(i, j, k))] = kOffZero * spread;
+      }
+  values.swap(out);
+}
+
 }  // namespace
 
 PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec3>& data,
@@ -286,6 +313,7 @@ PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec
         values[static_cast<std::size_t>(g.index(i, j, k))] = std::isfinite(v) ? v : 1.0;  // undefined: outside
       }
   const double sample_seconds = clock.seconds();
+  keep_samples_off_zero(g, values);
 
   // 2. Triangles, vertices shared by grid edge.
   Extractor ex(g, values);
@@ -306,7 +334,7 @@ PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < nv; ++v) {
     const EdgeVertex& e = ex.vertices[static_cast<std::size_t>(v)];
-    Vec3 p = root ? edge_root(f, e) : e.pa + std::clamp(e.va / (e.va - e.vb), 1e-6, 1.0 - 1e-6) * (e.pb - e.pa);
+    Vec3 p = root ? edge_root(f, e) : e.pa + std::clamp(e.va / (e.va - e.vb), kEdgeClamp, 1.0 - kEdgeClamp) * (e.pb - e.pa);
     Vec3 grad;
     if (options.newton_project) {
       const NewtonProjection r = newton_project(f, p, newton);

@@ -75,7 +75,7 @@ class CubicBSpline {
     // Branch-free: in the T-spline inner loop x falls inside or outside the support unpredictably.
     const int s = int(x >= t_[1]) + int(x >= t_[2]) + int(x >= t_[3]);
     const double inside = (x >= t_[0] && x < t_[4]) ? 1.0 : 0.0;  // also 0 for NaN
-    const double y = x - t_[s];
+    const double y = inside != 0.0 ? x - t_[s] : 0.0;              // no inf * 0 far outside
     const double* c = c_[s];
     // N >= 0; near t4 the last piece's polynomial can round to -1e-17, clamp that to 0.
     value = inside * std::max(0.0, ((c[3] * y + c[2]) * y + c[1]) * y + c[0]);

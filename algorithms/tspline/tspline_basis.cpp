@@ -113,6 +113,7 @@ TSplineBasis::TSplineBasis(Octree octree) : octree_(std::move(octree)) {
     std::stable_sort(keyed.begin(), keyed.end(), [](const Keyed& p, const Keyed& q) { return p.group_key < q.group_key; });
     LeafSupport& leaf = leaves_[l];
     leaf.group_begin = std::uint32_t(groups_.size());
+    leaf.entry_begin = begin;
     for (std::uint32_t k = 0; k < keyed.size(); ++k) {
       if (k == 0 || keyed[k].group_key != keyed[k - 1].group_key)  // controls ascend within a group
         groups_.push_back({begin + k, keyed[k].control, std::uint8_t(keyed[k].group_key & 0xff),
@@ -203,6 +204,11 @@ template <int Order>
 double TSplineBasis::evaluate_impl(const double* c, const Vec3& x_in, Vec3* gradient, Mat3* hessian) const {
   const Vec3 x = clamp(x_in);
   const LeafSupport& leaf = leaves_[octree_.locate(x)];
+  // Queries in random order miss the cache on every array; start the group and entry loads before
+  // the B-spline evaluation needs the cache's attention.
+  __builtin_prefetch(groups_.data() + leaf.group_begin);
+  __builtin_prefetch(entries_.data() + leaf.entry_begin);
+  __builtin_prefetch(entries_.data() + leaf.entry_begin + 16);
   double n[3][kMaxLocalSplines][3];
   evaluate_splines<Order>(leaf, x, n);
   // Sums of B and c B (index 0 and 1) and of their derivatives. B_i = X Y Z factorises, and a group
@@ -285,7 +291,11 @@ void TSplineBasis::active(const Vec3& x_in, ActiveBasis& out, bool hessians) con
   out.leaf = octree_.locate(x);
   const LeafSupport& leaf = leaves_[out.leaf];
   double n[3][kMaxLocalSplines][3];
-  evaluate_splines<2>(leaf, x, n);
+  if (hessians) {
+    evaluate_splines<2>(leaf, x, n);
+  } else {
+    evaluate_splines<1>(leaf, x, n);
+  }
   out.index.clear();
   out.value.clear();
   out.gradient.clear();

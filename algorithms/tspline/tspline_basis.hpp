@@ -113,6 +113,8 @@ class TSplineBasis {
   };
   struct LeafSupport {
     std::uint32_t group_begin = 0, group_end = 0;  // into groups_
+    std::uint32_t entry_begin = 0;                 // = groups_[group_begin].entry_begin, kept here so
+                                                   // groups, entries and splines load in parallel
     std::uint32_t spline_begin = 0;                // into leaf_splines_: count[0] + count[1] + count[2]
     std::uint8_t count[3] = {0, 0, 0};
   };

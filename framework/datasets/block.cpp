@@ -78,18 +78,21 @@ TriangleMesh block_mesh(const BlockOptions& o) {
   const double e = o.edge_length;
   const double perimeter = 4.0 * (a + b);
 
-  // Halvings between the rectangle (N points) and the circle (N / 2^q points): the circle should get
-  // about perimeter-ratio times fewer points to keep its spacing near e.
-  const int q = std::max(0, static_cast<int>(std::lround(std::log2(perimeter / (2.0 * M_PI * rh)))));
-  const int stride_q = 1 << q;
-
   // Points on the rectangle, counter-clockwise from (a, 0), with the four corners among them. Segment
-  // counts are rounded from their lengths, then the longest segments grow until 2^q divides N.
+  // counts are rounded from their lengths.
   const Vec3 corners[6] = {{a, 0, 0}, {a, b, 0}, {-a, b, 0}, {-a, -b, 0}, {a, -b, 0}, {a, 0, 0}};
   int count[5];
   for (int s = 0; s < 5; ++s)
     count[s] = std::max(1, static_cast<int>(std::lround((corners[s + 1] - corners[s]).norm() / e)));
   int n_total = count[0] + count[1] + count[2] + count[3] + count[4];
+
+  // Halvings between the rectangle (N points) and the circle (N / 2^q points): the circle should get
+  // about perimeter-ratio times fewer points to keep its spacing near e, but never fewer than 16, or a
+  // small hole would become a polygon of a few sides.
+  int q = std::max(0, static_cast<int>(std::lround(std::log2(perimeter / (2.0 * M_PI * rh)))));
+  while (q > 0 && n_total / (1 << q) < 16) --q;
+  const int stride_q = 1 << q;
+  // The longest segments grow until 2^q divides N.
   for (int s = 1; n_total % stride_q != 0; s = s % 4 + 1) {  // grow the long sides in turn: 1, 2, 3, 4
     ++count[s];
     ++n_total;

@@ -52,8 +52,10 @@ std::pair<std::string, std::unique_ptr<Plugin>> parse_plugin(const Registry<Plug
   std::unique_ptr<Plugin> plugin = registry.create(type.Scalar(), key + ".type");
   // The options sit beside `type`; everything else must be an option of this plugin.
   YAML::Node options(YAML::NodeType::Map);
-  for (auto it = node.begin(); it != node.end(); ++it)
-    if (it->first.as<std::string>() != "type") options[it->first] = it->second;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    if (!it->first.IsScalar()) throw ConfigError(key + ": a key is " + shown(it->first) + ", not a name");
+    if (it->first.Scalar() != "type") options[it->first] = it->second;
+  }
   apply_yaml(plugin->options(), options, key);
   return {type.Scalar(), std::move(plugin)};
 }
@@ -105,7 +107,8 @@ DatasetSpec parse_dataset(const YAML::Node& node, const std::string& context) {
                       shown(node));
   static const char* const keys[] = {"name", "shape", "sampler", "corruptions", "seed"};
   for (auto it = node.begin(); it != node.end(); ++it) {
-    const std::string k = it->first.as<std::string>();
+    if (!it->first.IsScalar()) throw ConfigError(context + ": a key is " + shown(it->first) + ", not a name");
+    const std::string k = it->first.Scalar();
     if (std::find(std::begin(keys), std::end(keys), k) == std::end(keys))
       throw ConfigError(context + "." + k + ": unknown key; known keys: name, shape, sampler, corruptions, seed");
   }

@@ -90,14 +90,15 @@ DatasetSpec parse_dataset(const YAML::Node& node, const std::string& context);
 
 struct Dataset {
   std::string name;
-  PointCloud points;                         ///< in [-1,1]^3; normals are the ground truth's where known
+  PointCloud points;  ///< in [-1,1]^3; normals the ground truth's where known (outliers: random unit)
   std::optional<TriangleMesh> ground_truth;  ///< in the same frame
   nlohmann::json description;                ///< shape, sampler, corruptions with their options; counts; seed
 };
 
 /// Loads, normalises the shape into [-1,1]^3, samples, corrupts, then normalises points and ground
-/// truth together by the points' box. Deterministic: the sampler and each corruption get their own
-/// generator, seeded in turn from one seeded by (seed, spec.seed_offset), so changing one corruption's
+/// truth together by the points' box. Deterministic (for a given standard library, whose random
+/// distributions are implementation-defined): the sampler and each corruption get their own
+/// generator, seeded in turn from one seeded by seed + spec.seed_offset, so changing one corruption's
 /// options does not move the random choices of the others. Throws AlgorithmError naming the dataset
 /// if no point remains, a coordinate is not finite, or all points coincide.
 Dataset build_dataset(DatasetSpec& spec, std::uint64_t seed);

@@ -150,6 +150,14 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
       if (pid == 0) {
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
+        // The libraries' own chatter (PCL prints to stdout/stderr) goes to the run's log, not the terminal.
+        std::error_code ec;
+        fs::create_directories(run_dir, ec);
+        if (FILE* log = std::fopen((run_dir + "/log.txt").c_str(), "w")) {
+          ::dup2(fileno(log), STDOUT_FILENO);
+          ::dup2(fileno(log), STDERR_FILENO);
+          std::fclose(log);
+        }
         int code = 0;
         try {
           const Dataset d = read_dataset(dir + "/datasets/" + run.dataset_key);

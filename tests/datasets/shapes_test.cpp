@@ -229,14 +229,22 @@ TEST_CASE("block: closed genus 1, dense, sharp exactly at the box edges and hole
 }
 
 TEST_CASE("block: other proportions stay closed genus 1", "[datasets][shapes]") {
-  // A long thin plate with a small hole (several halvings near the hole) and a cube with a large one.
+  // A long thin plate with a small hole (several halvings near the hole), a cube with a large one, a
+  // pin-hole (its circle keeps at least 16 points), and a coarse block.
   for (const char* yaml : {"{length: 4, width: 1, height: 0.3, hole_radius: 0.1, edge_length: 0.05}",
+                           "{hole_radius: 0.005, edge_length: 0.05}",
                            "{length: 1, width: 1, height: 1, hole_radius: 0.4, edge_length: 0.05}",
                            "{edge_length: 0.2}"}) {
     INFO(yaml);
     const ShapeData d = load_shape("block", yaml);
     check_closed(*d.mesh, 1, 1);
     check_unit_normals(*d.mesh);
+    const double rh = YAML::Load(yaml)["hole_radius"].as<double>(0.35);
+    const double top = bounding_box(d.mesh->vertices).max.z();
+    std::size_t on_rim = 0;  // vertices of the hole's top rim
+    for (const Vec3& p : d.mesh->vertices)
+      on_rim += std::abs(std::hypot(p.x(), p.y()) - rh) < 1e-9 && p.z() == top ? 1 : 0;
+    CHECK(on_rim >= 16);
   }
 }
 

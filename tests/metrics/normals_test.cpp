@@ -91,6 +91,17 @@ TEST_CASE("estimated normals of two separate spheres both point outward", "[norm
   CHECK(outward >= 0.99);
 }
 
+TEST_CASE("exact duplicate points share one outward normal", "[normals]") {
+  // Coincident neighbours used to crash CGAL's jet fit; each distinct position is estimated once.
+  PointCloud c = sphere_cloud(1000, 1.0, Vec3::Zero(), 6);
+  const std::size_t n = c.points.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int copy = 0; copy < 20; ++copy) c.points.push_back(c.points[i]), c.normals.push_back(c.normals[i]);
+  const std::vector<Vec3> normals = estimate_oriented_normals(c.points, 18, true);
+  CHECK(outward_fraction(normals, c.normals) >= 0.99);
+  for (std::size_t i = n; i < c.points.size(); ++i) REQUIRE(normals[i] == normals[(i - n) / 20]);
+}
+
 TEST_CASE("with_normals applies the source rule and names the source used", "[normals]") {
   const PointCloud with = sphere_cloud(500, 1.0, Vec3::Zero(), 3);
   PointCloud without = with;
@@ -138,10 +149,12 @@ TEST_CASE("normal options are checked field by field", "[normals][errors]") {
 TEST_CASE("normal estimation rejects too few or bad points", "[normals][errors]") {
   const PointCloud c = sphere_cloud(18, 1.0, Vec3::Zero(), 5);
   CHECK_THROWS_MATCHES(estimate_oriented_normals(c.points, 18, true), AlgorithmError,
-                       test::MessageContains({"18 points", "19"}));
+                       test::MessageContains({"18 distinct points", "19"}));
   CHECK_NOTHROW(estimate_oriented_normals(c.points, 17, true));
   CHECK_THROWS_AS(estimate_oriented_normals({Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1, false), AlgorithmError);
   CHECK_THROWS_AS(estimate_oriented_normals({}, 3, true), AlgorithmError);
+  CHECK_THROWS_MATCHES(estimate_oriented_normals(std::vector<Vec3>(40, Vec3(1, 2, 3)), 18, true), AlgorithmError,
+                       test::MessageContains({"1 distinct points (of 40)"}));
   std::vector<Vec3> nan = c.points;
   nan[4].z() = std::nan("");
   CHECK_THROWS_MATCHES(estimate_oriented_normals(nan, 5, true), AlgorithmError, test::MessageContains({"point 4"}));

@@ -150,7 +150,7 @@ class DoubleTorus final : public AnalyticImplicit {
       std::swap(a, b);
       std::swap(ga, gb);
     }
-    const double k = 0.1, h = std::max(k - (b - a), 0.0) / k;
+    const double k = 0.25, h = std::max(k - (b - a), 0.0) / k;
     g = (1.0 - 0.5 * h * h) * ga + 0.5 * h * h * gb;
     return a - k * h * h * h / 6.0;
   }
@@ -169,6 +169,31 @@ class Plane final : public AnalyticImplicit {
     g = Vec3::UnitZ();
     return x.z();
   }
+};
+
+/// `inner` moved by a rotation and a translation: f(x) = inner(R^T (x - t)); distances are preserved.
+class Moved final : public AnalyticImplicit {
+ public:
+  Moved(std::unique_ptr<AnalyticImplicit> inner, const Mat3& rotation, const Vec3& translation)
+      : inner_(std::move(inner)), r_(rotation), t_(translation) {}
+  double distance(const Vec3& x) const override { return inner_->distance(r_.transpose() * (x - t_)); }
+  std::string name() const override { return "moved_" + inner_->name(); }
+  int genus() const override { return inner_->genus(); }
+  int components() const override { return inner_->components(); }
+  double area() const override { return inner_->area(); }
+
+ protected:
+  double eval(const Vec3& x, Vec3& g) const override {
+    Vec3 gi;
+    const double v = inner_->evaluate(r_.transpose() * (x - t_), &gi);
+    g = r_ * gi;
+    return v;
+  }
+
+ private:
+  std::unique_ptr<AnalyticImplicit> inner_;
+  Mat3 r_;
+  Vec3 t_;
 };
 
 }  // namespace dtsl::test

@@ -97,9 +97,10 @@ inline bool segment_crosses(const Vec3& p, const Vec3& q, const Vec3& a, const V
 
 }  // namespace detail
 
-/// Number of pairs of triangles that cross each other (pairs sharing an edge are not tested; pairs
-/// sharing a vertex are tested for edges piercing the other triangle away from that vertex).
-inline std::size_t self_intersections(const TriangleMesh& mesh) {
+/// Number of pairs of triangles that cross each other: an edge of one pierces the interior of the
+/// other. Pairs sharing an edge are not tested, pairs sharing a vertex only through the edges away
+/// from it; coplanar overlaps are not detected (none of the tested surfaces has flat parts).
+inline std::size_t self_intersections(const TriangleMesh& mesh, std::vector<std::pair<int, int>>* pairs = nullptr) {
   double cell = 0.0;
   for (const Face& t : mesh.faces)
     for (int k = 0; k < 3; ++k)
@@ -132,14 +133,22 @@ inline std::size_t self_intersections(const TriangleMesh& mesh) {
         for (int a : t1)
           for (int b : t2) shared += a == b;
         if (shared >= 2) continue;
-        bool hit = false;
-        for (int k = 0; k < 3 && !hit; ++k) {
-          const Vec3 &p = mesh.vertices[t1[k]], &q = mesh.vertices[t1[(k + 1) % 3]];
-          hit = detail::segment_crosses(p, q, mesh.vertices[t2[0]], mesh.vertices[t2[1]], mesh.vertices[t2[2]]);
-          const Vec3 &r = mesh.vertices[t2[k]], &s = mesh.vertices[t2[(k + 1) % 3]];
-          hit = hit || detail::segment_crosses(r, s, mesh.vertices[t1[0]], mesh.vertices[t1[1]], mesh.vertices[t1[2]]);
-        }
+        // An edge through a vertex of the other triangle meets that triangle's plane only there (or
+        // lies in it): testing it would only measure rounding. With one shared vertex, a crossing
+        // shows as the opposite edge of one triangle piercing the other.
+        const auto pierces = [&](const Face& a, const Face& b) {
+          for (int k = 0; k < 3; ++k) {
+            const int u = a[k], w = a[(k + 1) % 3];
+            if (u == b[0] || u == b[1] || u == b[2] || w == b[0] || w == b[1] || w == b[2]) continue;
+            if (detail::segment_crosses(mesh.vertices[u], mesh.vertices[w], mesh.vertices[b[0]], mesh.vertices[b[1]],
+                                        mesh.vertices[b[2]]))
+              return true;
+          }
+          return false;
+        };
+        const bool hit = pierces(t1, t2) || pierces(t2, t1);
         count += hit;
+        if (hit && pairs) pairs->emplace_back(static_cast<int>(f), g);
       }
     });
   }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "algorithms/tspline/bspline.hpp"
@@ -58,6 +59,11 @@ TEST_CASE("cubic B-spline is C2 at its knots and vanishes to second order at its
     }
     CHECK(n.value(t[0]) == 0.0);
     CHECK(n.value(t[4]) == 0.0);
+    double v = 1, d1 = 1, d2 = 1;
+    n.evaluate<2>(1e300, v, d1, d2);  // far outside: exact zeros, no inf * 0
+    CHECK((v == 0.0 && d1 == 0.0 && d2 == 0.0));
+    n.evaluate<2>(std::nan(""), v, d1, d2);
+    CHECK((v == 0.0 && d1 == 0.0 && d2 == 0.0));
     CHECK(n.greville() == Approx((t[1] + t[2] + t[3]) / 3.0));
   }
 }

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <thread>
 
 #include "algorithms/tspline/tspline.hpp"
 #include "tests/tspline/fixtures.hpp"
@@ -325,4 +326,25 @@ TEST_CASE("T-spline rejects coefficient vectors of the wrong size or with NaN", 
   std::vector<double> c(basis->size(), 0.0);
   c[5] = std::nan("");
   CHECK_THROWS_WITH(TSpline(basis, c), Catch::Contains("coefficient 5"));
+}
+
+TEST_CASE("evaluation is thread-safe", "[tspline][eval]") {
+  // The evolution evaluates from OpenMP threads: no shared mutable state in a basis or a T-spline.
+  const auto basis = test::adaptive_basis();
+  const TSpline f(basis, test::random_coefficients(*basis, 24));
+  const auto points = test::random_points(f.domain(), 20000, 25);
+  std::vector<double> serial(points.size()), parallel(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) serial[k] = f.value(points[k]);
+  auto work = [&](std::size_t begin) {
+    ActiveBasis active;
+    for (std::size_t k = begin; k < points.size(); k += 2) {
+      Vec3 g;
+      parallel[k] = f.evaluate(points[k], &g);
+      basis->active(points[k], active);
+    }
+  };
+  std::thread a(work, 0), b(work, 1);
+  a.join();
+  b.join();
+  CHECK(serial == parallel);
 }

@@ -1,0 +1,63 @@
+// Robustness sweep (hidden: `test_polygonize "[.stress]"`): random rigid motions of the analytic shapes
+// and random steps; every run must give a closed, manifold, self-intersection-free mesh of the right
+// topology. Prints each failure.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <random>
+
+#include "algorithms/polygonize/polygonizer.hpp"
+#include "framework/core/error.hpp"
+#include "framework/metrics/metrics.hpp"
+#include "tests/polygonize/implicits.hpp"
+#include "tests/polygonize/support.hpp"
+
+using namespace dtsl;
+using namespace dtsl::test;
+
+TEST_CASE("polygonizer robustness sweep", "[.stress]") {
+  register_polygonizers();
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int runs = 0, failures = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::unique_ptr<AnalyticImplicit> inner;
+    switch (trial % 4) {
+      case 0: inner = std::make_unique<Sphere>(Vec3::Zero(), 0.5 + 0.4 * u(rng)); break;
+      case 1: inner = std::make_unique<Torus>(Vec3::Zero(), 0.55 + 0.2 * u(rng), 0.18 + 0.1 * u(rng)); break;
+      case 2: inner = std::make_unique<TwoSpheres>(Vec3(-0.6, 0, 0), 0.3 + 0.15 * u(rng), Vec3(0.6, 0, 0), 0.3 + 0.15 * u(rng)); break;
+      default: inner = std::make_unique<DoubleTorus>(); break;
+    }
+    const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
+    const Vec3 t = 0.05 * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    const Moved shape(std::move(inner), q.toRotationMatrix(), t);
+    const double step = 0.015 + 0.05 * u(rng);
+    const std::vector<Vec3> data = surface_points(shape, shape.domain(), 800, trial);
+    for (const std::string& name : polygonizers().names()) {
+      ++runs;
+      std::string problem;
+      try {
+        auto p = polygonizers().create(name, "stress");
+        set_option(p->options(), "step", step);
+        const PolygonizeResult r = p->polygonize(shape, data);
+        const MeshStats st = mesh_stats(r.mesh);
+        if (!st.watertight) problem += " not-watertight";
+        if (st.components != static_cast<std::size_t>(shape.components())) problem += " components=" + std::to_string(st.components);
+        if (st.watertight && std::abs(st.genus - shape.genus()) > 0.1) problem += " genus=" + std::to_string(st.genus);
+        const std::size_t x = self_intersections(r.mesh);
+        if (x) problem += " self-intersections=" + std::to_string(x);
+        if (name == "marching_triangulation" && (st.valence6_fraction < 0.7 || st.min_angle_p01_deg < 25))
+          problem += " quality v6=" + std::to_string(st.valence6_fraction) + " p01=" + std::to_string(st.min_angle_p01_deg);
+      } catch (const Error& e) {
+        problem = std::string(" threw: ") + e.what();
+      }
+      if (!problem.empty()) {
+        ++failures;
+        std::printf("trial %d %s %s step %.4f:%s\n", trial, name.c_str(), shape.name().c_str(), step, problem.c_str());
+      }
+    }
+  }
+  std::printf("%d runs, %d failures\n", runs, failures);
+  CHECK(failures == 0);
+}
