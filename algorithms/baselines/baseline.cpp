@@ -290,7 +290,12 @@ ReconstructionResult PclBaseline::reconstruct(const PointCloud& points, const Ru
   normals_stage.name = "normals";
   Stopwatch normals_clock;
   std::string source;
-  PointCloud oriented = with_normals(cloud, normal_options(), source);
+  PointCloud oriented;
+  try {
+    oriented = with_normals(cloud, normal_options(), source);
+  } catch (const AlgorithmError& e) {
+    throw AlgorithmError(name_ + ": " + e.what());  // e.g. "normals: source 'ground_truth' requested but ..."
+  }
   normals_stage.seconds = normals_clock.seconds();
   if (oriented.normals.size() != oriented.points.size() || oriented.points.size() != cloud.points.size())
     throw AlgorithmError(name_ + ": the normal source '" + source + "' returned " +

@@ -91,7 +91,7 @@ struct RbfOptions final : Options {
             "keep it below half the thinnest part's thickness (PCL default 0.1 in the input's units)");
     v.field("max_points", max_points,
             "refuse inputs with more (distinct) points: the RBF system is dense, 2n x 2n, so n = 4000 "
-            "needs 512 MiB and about a minute; n = 8000 would need 2 GiB and ~8x the time");
+            "needs 512 MiB and about 35 s on one core; n = 8000 would need 2 GiB and ~8x the time");
     v.field("rbf_solver", rbf_solver,
             "partial_piv_lu: the same system solved by Eigen's blocked LU (fast); pcl: PCL's own "
             "full-pivoting LU (exactly PCL, ~10x slower, twice the memory)");

@@ -336,6 +336,14 @@ void Marcher::expand(int m) {
   refresh(p);
   for (int n : created) refresh(n);
   refresh(q);
+  // Distance check of the new points right away (Hartmann checks new points as they are made): a new
+  // point that landed near another part of the front must be joined before anything else grows
+  // there, or fronts advance over each other.
+  for (int n : created) {
+    if (!fronts_.node(n).alive) continue;
+    const int j = find_partner(n);
+    if (j >= 0) join(n, j);
+  }
 }
 
 ComponentMesh Marcher::run(const Vec3& seed) {

@@ -1,5 +1,4 @@
 // MeshDistance: exact point-to-mesh distance through a CGAL AABB tree over the mesh's triangles.
-#include <Eigen/Geometry>  // cross(): types.hpp includes only Eigen/Core
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -8,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"

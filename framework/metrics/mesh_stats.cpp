@@ -1,5 +1,4 @@
 // Combinatorial and quality statistics of a triangle mesh (DESIGN.md §5, "Mesh").
-#include <Eigen/Geometry>  // cross(): types.hpp includes only Eigen/Core
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -14,7 +14,10 @@ namespace dtsl {
 /// Exact closest-point queries on a triangle mesh (CGAL AABB tree behind a pimpl).
 class MeshDistance {
  public:
-  explicit MeshDistance(const TriangleMesh& mesh);  ///< throws AlgorithmError for a mesh without faces
+  /// Builds the whole tree now, so queries are const and thread-safe. Zero-area faces are left out (no
+  /// normal; their points lie on neighbouring edges). Throws AlgorithmError for a mesh without faces,
+  /// with every face of zero area, with a vertex index out of range or a non-finite vertex.
+  explicit MeshDistance(const TriangleMesh& mesh);
   ~MeshDistance();
   MeshDistance(const MeshDistance&) = delete;
   MeshDistance& operator=(const MeshDistance&) = delete;
@@ -41,9 +44,13 @@ struct PointErrors {
   double e_avr = 0.0;
   double e_max = 0.0;
 };
+/// Throws AlgorithmError for no points, a non-finite point, or a mesh MeshDistance rejects.
 PointErrors point_errors(const std::vector<Vec3>& points, const TriangleMesh& mesh);
 
-/// Result R against ground truth G, with `samples` area-uniform samples on each.
+/// Result R against ground truth G, with `samples` area-uniform samples on each, drawn from two
+/// streams fixed by `seed` (deterministic; the thread count never changes a result). "Within tau" is
+/// distance <= tau. Throws AlgorithmError naming "result" or "truth" for a mesh MeshDistance rejects,
+/// and for samples == 0 or a negative or non-finite tau_ratio.
 struct SurfaceMetrics {
   double accuracy = 0.0;            ///< mean distance of R's samples to G
   double completeness = 0.0;        ///< mean distance of G's samples to R

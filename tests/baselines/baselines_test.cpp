@@ -165,7 +165,27 @@ TEST_CASE("normals: ground_truth on a cloud without normals is refused naming th
   auto r = create(name);
   set(*r, "normals", "ground_truth");
   CHECK_THROWS_AS(r->reconstruct(sphere(500, false), RunContext{}), AlgorithmError);
-  CHECK_THROWS_WITH(r->reconstruct(sphere(500, false), RunContext{}), Contains("ground_truth"));
+  CHECK_THROWS_WITH(r->reconstruct(sphere(500, false), RunContext{}),
+                    Contains(name) && Contains("normals") && Contains("ground_truth"));
+}
+
+TEST_CASE("pcl_mc_rbf: the fast solver matches PCL's own, and threads do not change the result", "[baselines]") {
+  const PointCloud cloud = sphere(300);
+  auto fast = create("pcl_mc_rbf");
+  set(*fast, "grid_resolution", "24");
+  auto exact = create("pcl_mc_rbf");
+  set(*exact, "grid_resolution", "24");
+  set(*exact, "rbf_solver", "pcl");
+  const TriangleMesh a = fast->reconstruct(cloud, RunContext{1, 1}).mesh;
+  const TriangleMesh b = exact->reconstruct(cloud, RunContext{1, 1}).mesh;
+  const TriangleMesh c = fast->reconstruct(cloud, RunContext{1, 2}).mesh;
+  REQUIRE(a.vertices.size() == b.vertices.size());
+  REQUIRE(a.faces == b.faces);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) worst = std::max(worst, (a.vertices[i] - b.vertices[i]).norm());
+  CHECK(worst < 1e-4);
+  REQUIRE(a.vertices.size() == c.vertices.size());
+  CHECK(a.faces == c.faces);
 }
 
 TEST_CASE("pcl_mc_rbf refuses more than max_points, naming the count, the limit and the option", "[baselines]") {

@@ -2,7 +2,6 @@
 // Collision Detection, 5.1.5, Voronoi regions of the features) and a loop over every face.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 

@@ -1,7 +1,6 @@
 // Small meshes with known geometry and topology for the metric and normal tests.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <map>
 #include <utility>

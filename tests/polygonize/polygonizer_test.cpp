@@ -49,7 +49,7 @@ TEST_CASE("every polygonizer meshes closed level sets closed, manifold and accur
     for (const auto& shape : closed_shapes()) {
       const std::vector<Vec3> data = surface_points(*shape, shape->domain(), 1500, 11);
       const std::vector<Vec3> truth = surface_points(*shape, shape->domain(), 4000, 12);
-      for (const double step : {0.05, 0.035}) {
+      for (const double step : {0.045, 0.03}) {
         INFO(name << " on " << shape->name() << ", step " << step);
         const PolygonizeResult r = make(name, step)->polygonize(*shape, data);
         const MeshStats st = mesh_stats(r.mesh);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include "algorithms/polygonize/polygonizer.hpp"
@@ -18,10 +19,14 @@ using namespace dtsl::test;
 
 TEST_CASE("polygonizer robustness sweep", "[.stress]") {
   register_polygonizers();
-  std::mt19937_64 rng(2024);
+  // STRESS_SEED / STRESS_TRIALS vary the sweep from the command line.
+  const char* seed_env = std::getenv("STRESS_SEED");
+  const char* trials_env = std::getenv("STRESS_TRIALS");
+  std::mt19937_64 rng(seed_env ? std::strtoull(seed_env, nullptr, 10) : 2024);
+  const int trials = trials_env ? std::atoi(trials_env) : 60;
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int runs = 0, failures = 0;
-  for (int trial = 0; trial < 60; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     std::unique_ptr<AnalyticImplicit> inner;
     switch (trial % 4) {
       case 0: inner = std::make_unique<Sphere>(Vec3::Zero(), 0.5 + 0.4 * u(rng)); break;

@@ -6,7 +6,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -34,26 +37,45 @@ inline std::vector<Vec3> surface_points(const ImplicitFunction& f, const Boundin
   return out;
 }
 
-/// Sets the double or int option `name` (throws if there is none).
-inline void set_option(Options& o, const std::string& name, double value) {
-  struct Setter final : FieldVisitor {
-    std::string name;
-    double value;
-    bool found = false;
-    void field(const char*, bool&, const char*) override {}
-    void field(const char* n, int& v, const char*) override {
-      if (name == n) v = static_cast<int>(value), found = true;
-    }
-    void field(const char* n, double& v, const char*) override {
-      if (name == n) v = value, found = true;
-    }
-    void field(const char*, std::string&, const char*) override {}
-    void field(const char*, std::vector<double>&, const char*) override {}
-  } setter;
-  setter.name = name;
-  setter.value = value;
+/// Sets option `name` of `o` through its visitor (numbers into int or double fields, text into string
+/// fields, "true"/"false" into bool fields); throws if no field of a matching type has that name.
+class OptionSetter final : public FieldVisitor {
+ public:
+  OptionSetter(std::string name, std::string text) : name_(std::move(name)), text_(std::move(text)) {}
+  void field(const char* n, bool& v, const char*) override {
+    if (name_ == n && (text_ == "true" || text_ == "false")) v = text_ == "true", found = true;
+  }
+  void field(const char* n, int& v, const char*) override {
+    if (name_ == n && number()) v = std::stoi(text_), found = true;
+  }
+  void field(const char* n, double& v, const char*) override {
+    if (name_ == n && number()) v = std::stod(text_), found = true;
+  }
+  void field(const char* n, std::string& v, const char*) override {
+    if (name_ == n) v = text_, found = true;
+  }
+  void field(const char*, std::vector<double>&, const char*) override {}
+  bool found = false;
+
+ private:
+  bool number() const {
+    char* end = nullptr;
+    std::strtod(text_.c_str(), &end);
+    return end && *end == '\0' && !text_.empty();
+  }
+  std::string name_, text_;
+};
+
+inline void set_option(Options& o, const std::string& name, const std::string& text) {
+  OptionSetter setter(name, text);
   o.visit(setter);
-  if (!setter.found) throw std::runtime_error("no numeric option " + name);
+  if (!setter.found) throw std::runtime_error("no option " + name + " accepting '" + text + "'");
+}
+inline void set_option(Options& o, const std::string& name, double value) {
+  std::ostringstream s;
+  s.precision(17);
+  s << value;
+  set_option(o, name, s.str());
 }
 
 struct Hausdorff {
