@@ -33,14 +33,16 @@ constexpr bool kFlipMarchingCubes = false;
 
 // Options both marching cubes share.
 struct GridOptions {
-  int grid_resolution = 64;
+  explicit GridOptions(int resolution) : grid_resolution(resolution) {}
+  int grid_resolution;
   double iso_level = 0.0;
   double percentage_extend_grid = 0.1;
 
   void visit(FieldVisitor& v) {
     v.field("grid_resolution", grid_resolution,
-            "grid nodes per axis over the extended bounding box; 64 gives cells of about 0.034 in the "
-            "[-1,1]^3 frame, close to the spacing of 5k-30k points on a surface (PCL default 32)");
+            "grid nodes per axis over the extended bounding box (cells of 2.2 / grid_resolution in the "
+            "[-1,1]^3 frame), near the point spacing: 100 for pcl_mc_hoppe (0.022, 5k-30k points), 64 "
+            "for pcl_mc_rbf (0.034, at most max_points points; its cost is nodes x 2n) (PCL default 32)");
     v.field("iso_level", iso_level,
             "level of the implicit function that is extracted, in [0, 1); 0 is the surface, a positive "
             "value offsets it outward (PCL default 0)");
@@ -58,7 +60,7 @@ struct GridOptions {
 };
 
 struct HoppeOptions final : Options {
-  GridOptions grid;
+  GridOptions grid{100};
   double dist_ignore = 0.0;
   NormalSourceOptions normals;
 
@@ -78,7 +80,7 @@ struct HoppeOptions final : Options {
 };
 
 struct RbfOptions final : Options {
-  GridOptions grid;
+  GridOptions grid{64};
   double off_surface_displacement = 0.05;
   int max_points = 4000;
   std::string rbf_solver = "partial_piv_lu";

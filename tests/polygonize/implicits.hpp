@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "framework/core/implicit.hpp"
 
@@ -169,6 +170,101 @@ class Plane final : public AnalyticImplicit {
     g = Vec3::UnitZ();
     return x.z();
   }
+};
+
+/// The classical polynomial genus-2 surface: a tube around the lemniscate (x^2+y^2)^2 = x^2 - y^2,
+/// f = g^2 + z^2 - r^2 with g = (x^2+y^2)^2 - x^2 + y^2, in coordinates scaled by `scale`. Far from a
+/// distance function (|grad f| ranges over an order of magnitude on the surface) and thin (curvature
+/// radius ~0.05 at the lobes' ends): a hard case for step control.
+class PolynomialDoubleTorus final : public AnalyticImplicit {
+ public:
+  explicit PolynomialDoubleTorus(double r = 0.15, double scale = 1.4) : r_(r), s_(scale) {}
+  std::string name() const override { return "polynomial_double_torus"; }
+  int genus() const override { return 2; }
+  int components() const override { return 1; }
+  double area() const override { return 0.0; }  // unknown in closed form
+
+ protected:
+  double eval(const Vec3& p, Vec3& grad) const override {
+    const Vec3 q = p / s_;
+    const double x = q.x(), y = q.y(), z = q.z(), rho = x * x + y * y;
+    const double g = rho * rho - x * x + y * y;
+    const double gx = 4 * x * rho - 2 * x, gy = 4 * y * rho + 2 * y;
+    grad = Vec3(2 * g * gx, 2 * g * gy, 2 * z) / s_;
+    return g * g + z * z - r_ * r_;
+  }
+
+ private:
+  double r_, s_;
+};
+
+/// A Phase-1-like level set: the uniform tensor-product cubic B-spline (the full-octree special case
+/// of the T-spline, DESIGN.md §1) quasi-interpolating another shape's function on a grid of spacing h
+/// (c_ijk = g(node), O(h^2) off g). Piecewise polynomial and C2, with |grad f| != 1 away from the
+/// source's zero set: what the polygonizers will see from the evolution, without linking it.
+class BSplineLevelSet final : public AnalyticImplicit {
+ public:
+  BSplineLevelSet(std::unique_ptr<AnalyticImplicit> source, double h) : source_(std::move(source)), h_(h) {
+    const BoundingBox d = domain();
+    origin_ = d.min - Vec3::Constant(2 * h);
+    n_ = static_cast<int>(std::ceil((d.max - d.min).maxCoeff() / h)) + 5;
+    c_.resize(static_cast<std::size_t>(n_) * n_ * n_);
+    for (int k = 0; k < n_; ++k)
+      for (int j = 0; j < n_; ++j)
+        for (int i = 0; i < n_; ++i) c_[index(i, j, k)] = source_->value(origin_ + h * Vec3(i, j, k));
+  }
+  std::string name() const override { return "bspline_" + source_->name(); }
+  int genus() const override { return source_->genus(); }
+  int components() const override { return source_->components(); }
+  double area() const override { return source_->area(); }
+
+ protected:
+  double eval(const Vec3& x, Vec3& g) const override {
+    const Vec3 t = (x - origin_) / h_;
+    int base[3];
+    double w[3][4], dw[3][4];
+    for (int a = 0; a < 3; ++a) {
+      base[a] = static_cast<int>(std::floor(t[a])) - 1;
+      for (int s = 0; s < 4; ++s) {
+        const double u = t[a] - (base[a] + s);
+        w[a][s] = kernel(u);
+        dw[a][s] = derivative(u) / h_;
+      }
+    }
+    double v = 0.0;
+    g.setZero();
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+          const int ii = std::clamp(base[0] + i, 0, n_ - 1), jj = std::clamp(base[1] + j, 0, n_ - 1),
+                    kk = std::clamp(base[2] + k, 0, n_ - 1);
+          const double c = c_[index(ii, jj, kk)];
+          v += c * w[0][i] * w[1][j] * w[2][k];
+          g += c * Vec3(dw[0][i] * w[1][j] * w[2][k], w[0][i] * dw[1][j] * w[2][k], w[0][i] * w[1][j] * dw[2][k]);
+        }
+    return v;
+  }
+
+ private:
+  static double kernel(double u) {
+    const double a = std::abs(u);
+    if (a < 1) return (4 - 6 * a * a + 3 * a * a * a) / 6;
+    if (a < 2) return (2 - a) * (2 - a) * (2 - a) / 6;
+    return 0.0;
+  }
+  static double derivative(double u) {
+    const double a = std::abs(u), s = u < 0 ? -1.0 : 1.0;
+    if (a < 1) return -2 * u + 1.5 * u * a;
+    if (a < 2) return -s * (2 - a) * (2 - a) / 2;
+    return 0.0;
+  }
+  std::size_t index(int i, int j, int k) const { return (static_cast<std::size_t>(k) * n_ + j) * n_ + i; }
+
+  std::unique_ptr<AnalyticImplicit> source_;
+  double h_;
+  Vec3 origin_;
+  int n_ = 0;
+  std::vector<double> c_;
 };
 
 /// `inner` moved by a rotation and a translation: f(x) = inner(R^T (x - t)); distances are preserved.

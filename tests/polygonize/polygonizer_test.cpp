@@ -26,6 +26,9 @@ std::vector<std::unique_ptr<AnalyticImplicit>> closed_shapes() {
   s.push_back(std::make_unique<Torus>(Vec3(0.02, 0.01, -0.03), 0.7, 0.25));
   s.push_back(std::make_unique<TwoSpheres>(Vec3(-0.6, 0.0, 0.0), 0.45, Vec3(0.65, 0.1, 0.0), 0.4));
   s.push_back(std::make_unique<DoubleTorus>());
+  // Spline level sets as Phase 1 produces them (C2, |grad f| != 1, cell-wise polynomial).
+  s.push_back(std::make_unique<BSplineLevelSet>(std::make_unique<Torus>(Vec3(0.02, 0.01, -0.03), 0.7, 0.25), 0.1));
+  s.push_back(std::make_unique<BSplineLevelSet>(std::make_unique<DoubleTorus>(), 0.1));
   return s;
 }
 

@@ -28,16 +28,20 @@ TEST_CASE("polygonizer robustness sweep", "[.stress]") {
   int runs = 0, failures = 0;
   for (int trial = 0; trial < trials; ++trial) {
     std::unique_ptr<AnalyticImplicit> inner;
-    switch (trial % 4) {
+    bool thin = false;
+    switch (trial % 7) {
       case 0: inner = std::make_unique<Sphere>(Vec3::Zero(), 0.5 + 0.4 * u(rng)); break;
       case 1: inner = std::make_unique<Torus>(Vec3::Zero(), 0.55 + 0.2 * u(rng), 0.18 + 0.1 * u(rng)); break;
       case 2: inner = std::make_unique<TwoSpheres>(Vec3(-0.6, 0, 0), 0.3 + 0.15 * u(rng), Vec3(0.6, 0, 0), 0.3 + 0.15 * u(rng)); break;
-      default: inner = std::make_unique<DoubleTorus>(); break;
+      case 3: inner = std::make_unique<DoubleTorus>(); break;
+      case 4: inner = std::make_unique<BSplineLevelSet>(std::make_unique<Torus>(Vec3::Zero(), 0.55 + 0.2 * u(rng), 0.18 + 0.1 * u(rng)), 0.08 + 0.05 * u(rng)); break;
+      case 5: inner = std::make_unique<BSplineLevelSet>(std::make_unique<DoubleTorus>(), 0.08 + 0.05 * u(rng)); break;
+      default: inner = std::make_unique<PolynomialDoubleTorus>(); thin = true; break;
     }
     const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
     const Vec3 t = 0.05 * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     const Moved shape(std::move(inner), q.toRotationMatrix(), t);
-    const double step = 0.015 + 0.05 * u(rng);
+    const double step = thin ? 0.008 + 0.008 * u(rng) : 0.015 + 0.05 * u(rng);
     const std::vector<Vec3> data = surface_points(shape, shape.domain(), 800, trial);
     for (const std::string& name : polygonizers().names()) {
       ++runs;

@@ -1,0 +1,74 @@
+#include "algorithms/evolution/data_distance.hpp"
+
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/property_map.h>
+
+#include <string>
+
+#include "framework/core/error.hpp"
+
+namespace dtsl {
+
+namespace {
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using BaseTraits = CGAL::Search_traits_3<Kernel>;
+// The tree stores indices into `points`; the adapter reads coordinates through the property map, so
+// a query returns which data point is nearest, not just where it is.
+using PointMap = CGAL::Pointer_property_map<Point>::type;
+using Traits = CGAL::Search_traits_adapter<std::size_t, PointMap, BaseTraits>;
+using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
+using Tree = Search::Tree;
+using Distance = Search::Distance;
+}  // namespace
+
+struct DataDistance::Impl {
+  std::vector<Point> points;
+  std::unique_ptr<Tree> tree;
+};
+
+DataDistance::DataDistance(const std::vector<Vec3>& points) : impl_(std::make_unique<Impl>()) {
+  if (points.empty()) throw AlgorithmError("data distance: no data points");
+  impl_->points.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())
+      throw AlgorithmError("data distance: data point " + std::to_string(i) + " is not finite");
+    impl_->points.emplace_back(points[i].x(), points[i].y(), points[i].z());
+  }
+  std::vector<std::size_t> ids(points.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  impl_->tree = std::make_unique<Tree>(ids.begin(), ids.end(), Tree::Splitter(),
+                                       Traits(CGAL::make_property_map(impl_->points)));
+  impl_->tree->build();  // now, so that concurrent queries never trigger the lazy build
+}
+
+DataDistance::~DataDistance() = default;
+
+std::size_t DataDistance::size() const { return impl_->points.size(); }
+
+NearestData DataDistance::nearest(const Vec3& x) const {
+  const Point q(x.x(), x.y(), x.z());
+  Search search(*impl_->tree, q, 1, 0.0, true,
+                Distance(CGAL::make_property_map(impl_->points)));
+  NearestData r;
+  const auto it = search.begin();
+  r.index = int(it->first);
+  const Vec3 p(impl_->points[it->first].x(), impl_->points[it->first].y(), impl_->points[it->first].z());
+  const Vec3 diff = x - p;
+  r.distance = diff.norm();
+  if (r.distance > 0.0) r.direction = diff / r.distance;
+  return r;
+}
+
+std::vector<NearestData> DataDistance::nearest_all(const std::vector<Vec3>& queries) const {
+  std::vector<NearestData> out(queries.size());
+  const long n = long(queries.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long i = 0; i < n; ++i) out[i] = nearest(queries[i]);
+  return out;
+}
+
+}  // namespace dtsl

@@ -1,0 +1,41 @@
+// d(x): the distance from x to the nearest data point, and grad d, its unit direction away from that
+// point — what every data-driven velocity of the level-set evolution reads (DESIGN.md §1,
+// "d(x) = distance to the nearest data point from a kd-tree, grad d its unit direction away from that
+// point"). A CGAL kd-tree behind a pimpl, so CGAL stays out of the headers.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "framework/core/types.hpp"
+
+namespace dtsl {
+
+struct NearestData {
+  double distance = 0.0;          ///< d(x) = |x - p|
+  Vec3 direction = Vec3::Zero();  ///< grad d = (x - p) / |x - p|; zero where x coincides with p
+  int index = -1;                 ///< p = points[index]
+};
+
+class DataDistance {
+ public:
+  /// Builds the tree now, so queries are const and thread-safe. AlgorithmError for no points or a
+  /// non-finite coordinate.
+  explicit DataDistance(const std::vector<Vec3>& points);
+  ~DataDistance();
+  DataDistance(const DataDistance&) = delete;
+  DataDistance& operator=(const DataDistance&) = delete;
+
+  /// The nearest data point (exact, ties broken by the tree). Thread-safe.
+  NearestData nearest(const Vec3& x) const;
+  /// nearest() of every query, in order (OpenMP-parallel).
+  std::vector<NearestData> nearest_all(const std::vector<Vec3>& queries) const;
+
+  std::size_t size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dtsl

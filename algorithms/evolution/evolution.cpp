@@ -1,0 +1,256 @@
+#include "algorithms/evolution/evolution.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "algorithms/evolution/data_distance.hpp"
+#include "algorithms/evolution/data_fit.hpp"
+#include "algorithms/evolution/initial_level_set.hpp"
+#include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/zero_set.hpp"
+#include "framework/config/yaml_options.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
+
+namespace dtsl {
+
+nlohmann::json to_json(const IterationRecord& r) {
+  nlohmann::json j = {{"iteration", r.iteration},
+                      {"seconds", r.seconds},
+                      {"time_step", r.time_step},
+                      {"surface_points", r.surface_points},
+                      {"band_points", r.band_points},
+                      {"unknowns", r.unknowns},
+                      {"mean_speed", r.mean_speed},
+                      {"max_speed", r.max_speed},
+                      {"mean_distance", r.mean_distance},
+                      {"max_distance", r.max_distance},
+                      {"min_gradient", r.min_gradient},
+                      {"max_gradient", r.max_gradient}};
+  if (r.solve) j["solve"] = to_json(*r.solve);
+  return j;
+}
+
+namespace {
+
+/// Time spent in each part of the evolution, for the summary (where the time goes).
+struct Timings {
+  double sampling = 0, velocity = 0, rows = 0, solve = 0, data_fit = 0;
+  nlohmann::json json() const {
+    return {{"zero_set_sampling", sampling}, {"velocity", velocity}, {"rows", rows}, {"solve", solve},
+            {"data_fit", data_fit}};
+  }
+};
+
+/// The velocity at every zero-set point.
+std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& data, const Velocity& velocity,
+                           double curvature_clamp) {
+  const long n = long(samples.surface.size());
+  std::vector<double> v(n);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (long j = 0; j < n; ++j) {
+    const SurfacePoint& p = samples.surface[j];
+    VelocitySample s;
+    s.position = p.position;
+    s.normal = p.gradient.normalized();
+    const double limit = curvature_clamp / p.cell_size;
+    s.curvature = std::clamp(mean_curvature(p.gradient, p.hessian), -limit, limit);
+    const NearestData nearest = data.nearest(p.position);
+    s.distance = nearest.distance;
+    s.distance_gradient = nearest.direction;
+    s.cell_size = p.cell_size;
+    v[j] = velocity.speed(s);
+  }
+  return v;
+}
+
+}  // namespace
+
+LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
+                                const EvolutionOptions& options_in) {
+  EvolutionOptions options = options_in;  // the plugins are stateful (cached factorisations)
+  options.check();
+  if (points.empty()) throw AlgorithmError("level-set evolution: no data points");
+  Stopwatch clock;
+  Timings timings;
+  const Velocity& velocity = options.velocity_plugin();
+  LevelSetSolver& solver = options.solver_plugin();
+  const TSplineBasis& basis = initial.basis();
+  const Octree& tmesh = basis.octree();
+  const Smoothness smoothness = smoothness_from_string(options.smoothness);
+  std::vector<std::array<int, 2>> edges;
+  if (smoothness == Smoothness::first_order && options.w_smooth > 0.0) edges = control_edges(basis);
+  double finest_side = std::numeric_limits<double>::infinity();
+  for (int l = 0; l < tmesh.leaf_count(); ++l) finest_side = std::min(finest_side, tmesh.leaf_side(l));
+
+  ZeroSetSampling sampling;
+  sampling.subdivision = options.subdivision;
+  sampling.band_width = options.band_width;
+  sampling.hessians = true;
+
+  const DataDistance data(points);
+  TSpline f = initial;
+  std::vector<double> best = f.coefficients();
+  std::vector<double> last_update(basis.size(), 0.0);
+  double best_distance = std::numeric_limits<double>::infinity(), reference = best_distance;
+  int best_iteration = 0, stalled = 0;
+  std::vector<IterationRecord> history;
+  std::string stop_reason;
+
+  for (int it = 0;; ++it) {
+    IterationRecord record;
+    record.iteration = it;
+    Stopwatch part;
+    const DataFit fit = data_fit(f, points);
+    timings.data_fit += part.seconds();
+    record.mean_distance = fit.mean;
+    record.max_distance = fit.max;
+
+    part.restart();
+    const ZeroSetSamples samples = sample_zero_set(f, tmesh, sampling);
+    timings.sampling += part.seconds();
+    record.surface_points = int(samples.surface.size());
+    record.band_points = int(samples.band.size());
+    if (samples.surface.empty()) {
+      // The inside region has vanished (data with no volume to wrap, e.g. all on a plane or a line).
+      stop_reason = "level set vanished";
+      record.seconds = clock.seconds();
+      history.push_back(record);
+      break;
+    }
+    part.restart();
+    const std::vector<double> v = speeds(samples, data, velocity, options.curvature_clamp);
+    timings.velocity += part.seconds();
+    double sum_speed = 0.0, max_speed = 0.0, min_ratio = std::numeric_limits<double>::infinity();
+    record.min_gradient = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < v.size(); ++j) {
+      const double s = std::abs(v[j]);
+      sum_speed += s;
+      max_speed = std::max(max_speed, s);
+      if (s > 0.0) min_ratio = std::min(min_ratio, samples.surface[j].cell_size / s);
+      const double g = samples.surface[j].gradient.norm();
+      record.min_gradient = std::min(record.min_gradient, g);
+      record.max_gradient = std::max(record.max_gradient, g);
+    }
+    record.mean_speed = sum_speed / double(v.size());
+    record.max_speed = max_speed;
+
+    // Stopping rule (DESIGN.md §1): at rest, or the mean data distance no longer decreasing, or the cap.
+    // The iterate kept is the one closest to the data: `distance` never comes to rest and `geodesic`
+    // jitters about the data, so the last iterate is not always the best.
+    if (fit.mean < best_distance) {
+      best_distance = fit.mean;
+      best = f.coefficients();
+      best_iteration = it;
+    }
+    if (fit.mean < reference * (1.0 - options.distance_tolerance)) {
+      reference = fit.mean;
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+    if (record.mean_speed < options.velocity_tolerance) stop_reason = "at rest";
+    else if (stalled >= options.patience) stop_reason = "distance stalled";
+    else if (it >= options.max_iterations) stop_reason = "iteration cap";
+    if (!stop_reason.empty()) {
+      record.seconds = clock.seconds();
+      history.push_back(record);
+      break;
+    }
+
+    // CFL step.
+    double dt = options.max_time_step;
+    if (max_speed > 0.0) {
+      const double cfl_dt = options.cfl_cell == "local" ? options.cfl * min_ratio : options.cfl * finest_side / max_speed;
+      dt = std::min(dt, cfl_dt);
+    }
+    record.time_step = dt;
+
+    // Least-squares rows for c'.
+    part.restart();
+    LeastSquaresBuilder rows(basis);
+    {
+      std::vector<Vec3> x(samples.surface.size());
+      std::vector<double> target(samples.surface.size());
+      for (std::size_t j = 0; j < x.size(); ++j) {
+        x[j] = samples.surface[j].position;
+        target[j] = -v[j] * samples.surface[j].gradient.norm();  // f'(x_j) = -v |grad f|
+      }
+      rows.add_value_rows(x, target, 1.0);
+    }
+    if (options.w_distance > 0.0) {
+      std::vector<Vec3> direction(samples.band.size());
+      std::vector<double> target(samples.band.size());
+      for (std::size_t m = 0; m < direction.size(); ++m) {
+        direction[m] = 2.0 * dt * samples.band_gradient[m];  // 2 dt grad f . grad f' = 1 - |grad f|^2
+        target[m] = 1.0 - samples.band_gradient[m].squaredNorm();
+      }
+      rows.add_gradient_rows(samples.band, direction, target, options.w_distance);
+    }
+    const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
+    timings.rows += part.seconds();
+    record.unknowns = system.unknowns;
+
+    part.restart();
+    Eigen::VectorXd update = system.restrict(last_update);  // warm start: the previous c'
+    record.solve = solver.solve(system, update);
+    timings.solve += part.seconds();
+
+    // Explicit Euler step c <- c + dt c'.
+    std::vector<double>& c = f.coefficients();
+    std::fill(last_update.begin(), last_update.end(), 0.0);
+    for (int k = 0; k < system.unknowns; ++k) {
+      c[system.control[k]] += dt * update[k];
+      last_update[system.control[k]] = update[k];
+    }
+    record.seconds = clock.seconds();
+    history.push_back(record);
+  }
+  const double evolution_seconds = clock.seconds();
+
+  TSpline evolved(initial.shared_basis(), best);
+  std::optional<RefinementReport> refinement;
+  TSpline result = evolved;
+  if (options.final_refinement) {
+    RefinedLevelSet refined = refine_level_set(evolved, points, options.refinement, solver);
+    result = std::move(refined.level_set);
+    refinement = std::move(refined.report);
+  }
+
+  nlohmann::json summary;
+  summary["velocity"] = options.velocity;
+  summary["solver"] = options.solver;
+  summary["options"] = to_json(options);
+  summary["points"] = points.size();
+  summary["tmesh"] = {{"control_points", basis.size()},
+                      {"leaves", tmesh.leaf_count()},
+                      {"finest_level", tmesh.finest_leaf_level()},
+                      {"max_depth", tmesh.max_depth()}};
+  summary["iterations"] = int(history.size()) - 1;
+  summary["best_iteration"] = best_iteration;
+  summary["stop_reason"] = stop_reason;
+  summary["mean_distance"] = history[best_iteration].mean_distance;
+  summary["max_distance"] = history[best_iteration].max_distance;
+  summary["evolution_seconds"] = evolution_seconds;
+  summary["evolution_timings"] = timings.json();
+  if (refinement) summary["final_refinement"] = to_json(*refinement);
+  summary["seconds"] = clock.seconds();
+
+  return LevelSetResult{std::move(result), std::move(evolved), std::move(history), best_iteration,
+                        std::move(stop_reason), std::move(refinement), std::move(summary)};
+}
+
+LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options) {
+  options.check();
+  Stopwatch clock;
+  auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
+  const double tmesh_seconds = clock.seconds();
+  const TSpline initial = initial_level_set(basis, enclosing_sphere(points, options.initial_radius_factor));
+  LevelSetResult result = evolve_level_set(initial, points, options);
+  result.summary["tmesh_seconds"] = tmesh_seconds;
+  result.summary["seconds"] = clock.seconds();
+  return result;
+}
+
+}  // namespace dtsl

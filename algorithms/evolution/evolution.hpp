@@ -1,0 +1,115 @@
+// Phase 1 of the paper (§2.1, its ref. [55]; DESIGN.md §1): the T-spline level set that captures the
+// topology and outline of the data by itself.
+//
+//   T-mesh from the points (octree, algorithms/tspline) -> f_0 = distance to an enclosing sphere ->
+//   evolution df/dt + v |grad f| = 0 with the distance-field constraint -> final refinement.
+//
+// Each step finds the coefficient derivatives c' by least squares (least_squares_rows.hpp)
+//
+//   E(c') = sum_j (f'(x_j) + v(x_j) |grad f(x_j)|)^2 / J
+//         + w_D sum_m (2 dt grad f(y_m) . grad f'(y_m) + |grad f(y_m)|^2 - 1)^2 / M
+//         + w_S c'^T R c' / n
+//
+// (x_j on the zero set, y_m in a band around it: zero_set.hpp), solved by a LevelSetSolver plugin,
+// then takes the explicit Euler step c <- c + dt c' with a CFL step dt. The distance-field term is the
+// linearisation of |grad (f + dt f')| = 1 and replaces re-initialisation ([55]). Topology changes
+// happen by themselves: the zero set is re-sampled over the whole T-mesh every step and nothing
+// assumes a genus or a number of components.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/evolution/final_refinement.hpp"
+#include "algorithms/evolution/solver.hpp"
+#include "algorithms/evolution/velocity.hpp"
+#include "algorithms/tspline/tspline.hpp"
+#include "framework/config/options.hpp"
+
+namespace dtsl {
+
+/// Every parameter of the level-set stage. The chosen velocity's and solver's own options, the T-mesh
+/// options and the final refinement's are visited with the prefixes velocity_, solver_, tmesh_ and
+/// refine_ (e.g. `velocity: geodesic` then `velocity_lambda: 0.5`, `tmesh_max_depth: 5`), so one flat
+/// YAML map configures the stage. A value type: copies clone the plugins.
+struct EvolutionOptions final : Options {
+  std::string velocity = "distance_balloon";
+  std::string solver = "eigen_ldlt";
+  double w_distance = 1.0;
+  double w_smooth = 1e-3;
+  std::string smoothness = "tikhonov";
+  double cfl = 0.5;
+  std::string cfl_cell = "local";
+  double max_time_step = 0.5;
+  int max_iterations = 200;
+  double velocity_tolerance = 1e-3;
+  double distance_tolerance = 1e-3;
+  int patience = 3;
+  int subdivision = 1;
+  double band_width = 2.0;
+  double curvature_clamp = 2.0;
+  double initial_radius_factor = 1.1;
+  bool final_refinement = true;
+  TMeshOptions tmesh;
+  FinalRefinementOptions refinement;
+
+  EvolutionOptions();
+  EvolutionOptions(const EvolutionOptions& other);
+  EvolutionOptions& operator=(const EvolutionOptions& other);
+
+  void visit(FieldVisitor& v) override;
+  void check() const override;
+
+  /// The velocity / solver plugin named by `velocity` / `solver`, with its options (created anew
+  /// with defaults when the name changed). ConfigError for an unknown name.
+  Velocity& velocity_plugin();
+  LevelSetSolver& solver_plugin();
+  const Velocity& velocity_plugin() const;
+  const LevelSetSolver& solver_plugin() const;
+
+ private:
+  void sync_plugins() const;
+  mutable std::string velocity_name_, solver_name_;  // names the plugins below were created for
+  mutable std::unique_ptr<Velocity> velocity_plugin_;
+  mutable std::unique_ptr<LevelSetSolver> solver_plugin_;
+};
+
+/// One evolution step, measured before the step is taken (iteration 0 is the initial level set).
+struct IterationRecord {
+  int iteration = 0;
+  double seconds = 0.0;              ///< wall time since the evolution started, at the end of this step
+  double time_step = 0.0;            ///< dt of the step taken (0 for the last record: no step)
+  int surface_points = 0, band_points = 0, unknowns = 0;
+  double mean_speed = 0.0, max_speed = 0.0;  ///< mean and max |v| over the x_j
+  double mean_distance = 0.0, max_distance = 0.0;  ///< data to level set, |f(p)| / |grad f(p)|
+  double min_gradient = 0.0, max_gradient = 0.0;   ///< |grad f| over the x_j
+  std::optional<SolveReport> solve;  ///< none for the last record
+};
+nlohmann::json to_json(const IterationRecord& r);
+
+/// Output of the stage (issue 3, item 3).
+struct LevelSetResult {
+  TSpline level_set;                    ///< T-mesh and coefficients (after the final refinement if on)
+  TSpline evolved;                      ///< the evolution's result before the final refinement
+  std::vector<IterationRecord> history;
+  int best_iteration = 0;               ///< the iterate kept: the one closest to the data
+  std::string stop_reason;              ///< "at rest", "distance stalled", "iteration cap", "level set vanished"
+  std::optional<RefinementReport> refinement;
+  nlohmann::json summary;               ///< options, counts, timings, stop reason, final distances
+};
+
+/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame), initial sphere, evolution, final
+/// refinement. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
+/// input the stage cannot handle (fewer than 4 points, all points coinciding, non-finite or outside
+/// the T-mesh's domain) or a solver failure.
+LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options);
+
+/// The evolution from a given level set (any T-mesh: adaptive, uniform, refined), then the final
+/// refinement if options.final_refinement. options.tmesh and initial_radius_factor are not used.
+LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
+                                const EvolutionOptions& options);
+
+}  // namespace dtsl

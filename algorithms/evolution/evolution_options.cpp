@@ -1,0 +1,167 @@
+// EvolutionOptions: the stage's own fields plus, under prefixes, the options of the chosen velocity
+// and solver plugins, the T-mesh and the final refinement (evolution.hpp).
+#include <deque>
+
+#include "algorithms/evolution/evolution.hpp"
+#include "framework/core/error.hpp"
+
+namespace dtsl {
+
+namespace {
+
+/// Forwards every field to `inner` under `prefix` + name (the names live as long as the visitor).
+class PrefixedVisitor final : public FieldVisitor {
+ public:
+  PrefixedVisitor(FieldVisitor& inner, std::string prefix) : inner_(inner), prefix_(std::move(prefix)) {}
+  void field(const char* n, bool& v, const char* d) override { inner_.field(name(n), v, d); }
+  void field(const char* n, int& v, const char* d) override { inner_.field(name(n), v, d); }
+  void field(const char* n, double& v, const char* d) override { inner_.field(name(n), v, d); }
+  void field(const char* n, std::string& v, const char* d) override { inner_.field(name(n), v, d); }
+  void field(const char* n, std::vector<double>& v, const char* d) override { inner_.field(name(n), v, d); }
+
+ private:
+  const char* name(const char* n) {
+    names_.push_back(prefix_ + n);
+    return names_.back().c_str();
+  }
+  FieldVisitor& inner_;
+  std::string prefix_;
+  std::deque<std::string> names_;
+};
+
+/// Runs a nested check(), putting the prefix in front of the field its ConfigError names.
+template <class Check>
+void checked_with_prefix(const std::string& prefix, Check&& check) {
+  try {
+    check();
+  } catch (const ConfigError& e) {
+    throw ConfigError(prefix + e.what());
+  }
+}
+
+}  // namespace
+
+EvolutionOptions::EvolutionOptions() {
+  register_velocities();
+  register_level_set_solvers();
+}
+
+EvolutionOptions::EvolutionOptions(const EvolutionOptions& other) : Options(other) { *this = other; }
+
+EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
+  if (this == &other) return *this;
+  velocity = other.velocity;
+  solver = other.solver;
+  w_distance = other.w_distance;
+  w_smooth = other.w_smooth;
+  smoothness = other.smoothness;
+  cfl = other.cfl;
+  cfl_cell = other.cfl_cell;
+  max_time_step = other.max_time_step;
+  max_iterations = other.max_iterations;
+  velocity_tolerance = other.velocity_tolerance;
+  distance_tolerance = other.distance_tolerance;
+  patience = other.patience;
+  subdivision = other.subdivision;
+  band_width = other.band_width;
+  curvature_clamp = other.curvature_clamp;
+  initial_radius_factor = other.initial_radius_factor;
+  final_refinement = other.final_refinement;
+  tmesh = other.tmesh;
+  refinement = other.refinement;
+  velocity_name_ = other.velocity_name_;
+  solver_name_ = other.solver_name_;
+  velocity_plugin_ = other.velocity_plugin_ ? other.velocity_plugin_->clone() : nullptr;
+  solver_plugin_ = other.solver_plugin_ ? other.solver_plugin_->clone() : nullptr;
+  return *this;
+}
+
+void EvolutionOptions::sync_plugins() const {
+  if (!velocity_plugin_ || velocity_name_ != velocity) {
+    velocity_plugin_ = velocities().create(velocity, "velocity");
+    velocity_name_ = velocity;
+  }
+  if (!solver_plugin_ || solver_name_ != solver) {
+    solver_plugin_ = level_set_solvers().create(solver, "solver");
+    solver_name_ = solver;
+  }
+}
+
+Velocity& EvolutionOptions::velocity_plugin() {
+  sync_plugins();
+  return *velocity_plugin_;
+}
+LevelSetSolver& EvolutionOptions::solver_plugin() {
+  sync_plugins();
+  return *solver_plugin_;
+}
+const Velocity& EvolutionOptions::velocity_plugin() const {
+  sync_plugins();
+  return *velocity_plugin_;
+}
+const LevelSetSolver& EvolutionOptions::solver_plugin() const {
+  sync_plugins();
+  return *solver_plugin_;
+}
+
+void EvolutionOptions::visit(FieldVisitor& v) {
+  v.field("velocity", velocity, "normal velocity plugin: distance, geodesic or distance_balloon (its options: velocity_*)");
+  v.field("solver", solver, "least-squares solver plugin: eigen_ldlt, eigen_cg or ceres (its options: solver_*)");
+  v.field("w_distance", w_distance, "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (DESIGN.md: 1)");
+  v.field("w_smooth", w_smooth, "weight w_S of the smoothness term c'^T R c' (DESIGN.md: 1e-3)");
+  v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (graph Laplacian of the T-mesh edges)");
+  v.field("cfl", cfl, "CFL factor: a step moves the zero set by at most cfl x the cell size (DESIGN.md: 0.5)");
+  v.field("cfl_cell", cfl_cell,
+          "cell size of the CFL rule: 'finest' (dt = cfl h_min / max|v|, DESIGN.md) or 'local' "
+          "(dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j: big steps through coarse empty space)");
+  v.field("max_time_step", max_time_step,
+          "cap on dt (pseudo-time); velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate");
+  v.field("max_iterations", max_iterations, "iteration cap of the evolution");
+  v.field("velocity_tolerance", velocity_tolerance, "at rest when the mean |v| on the zero set falls below this");
+  v.field("distance_tolerance", distance_tolerance,
+          "the mean data-to-level-set distance counts as decreasing if it falls by this fraction");
+  v.field("patience", patience, "stop after this many steps without the mean data distance decreasing");
+  v.field("subdivision", subdivision, "zero-set and band samples: centres of s^3 sub-cells of every leaf");
+  v.field("band_width", band_width,
+          "distance-field band: |f| / |grad f| < band_width x the leaf side (DESIGN.md: 2 h_min)");
+  v.field("curvature_clamp", curvature_clamp,
+          "|kappa| is capped at curvature_clamp / leaf side: the T-mesh cannot carry finer curvature, and "
+          "near a critical point of f kappa blows up");
+  v.field("initial_radius_factor", initial_radius_factor,
+          "initial sphere radius = this x the largest distance of a point from the bbox centre (DESIGN.md: 1.1)");
+  v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution ([55])");
+  sync_plugins();
+  PrefixedVisitor velocity_fields(v, "velocity_");
+  velocity_plugin_->options().visit(velocity_fields);
+  PrefixedVisitor solver_fields(v, "solver_");
+  solver_plugin_->options().visit(solver_fields);
+  PrefixedVisitor tmesh_fields(v, "tmesh_");
+  tmesh.visit(tmesh_fields);
+  PrefixedVisitor refine_fields(v, "refine_");
+  refinement.visit(refine_fields);
+}
+
+void EvolutionOptions::check() const {
+  if (!velocities().contains(velocity)) velocities().create(velocity, "velocity");  // throws, listing the names
+  if (!level_set_solvers().contains(solver)) level_set_solvers().create(solver, "solver");
+  check_non_negative("w_distance", w_distance);
+  check_non_negative("w_smooth", w_smooth);
+  check_one_of("smoothness", smoothness, {"tikhonov", "first_order"});
+  check_range("cfl", cfl, 1e-3, 10.0);
+  check_one_of("cfl_cell", cfl_cell, {"local", "finest"});
+  check_range("max_time_step", max_time_step, 1e-9, 100.0);
+  check_range("max_iterations", max_iterations, 0, 100000);
+  check_non_negative("velocity_tolerance", velocity_tolerance);
+  check_range("distance_tolerance", distance_tolerance, 0.0, 1.0);
+  check_range("patience", patience, 1, 100000);
+  check_range("subdivision", subdivision, 1, 4);
+  check_range("band_width", band_width, 0.5, 10.0);
+  check_positive("curvature_clamp", curvature_clamp);
+  check_range("initial_radius_factor", initial_radius_factor, 1.0, 10.0);
+  checked_with_prefix("velocity_", [&] { velocity_plugin().options().check(); });
+  checked_with_prefix("solver_", [&] { solver_plugin().options().check(); });
+  checked_with_prefix("tmesh_", [&] { tmesh.check(); });
+  checked_with_prefix("refine_", [&] { refinement.check(); });
+}
+
+}  // namespace dtsl

@@ -1,0 +1,161 @@
+#include "algorithms/evolution/final_refinement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "algorithms/evolution/data_distance.hpp"
+#include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/zero_set.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
+
+namespace dtsl {
+
+void FinalRefinementOptions::check() const {
+  check_range("target_level", target_level, -1, kMaxOctreeDepth);
+  check_range("data_reach", data_reach, 0.0, 100.0);
+  check_range("fit_iterations", fit_iterations, 0, 100);
+  check_non_negative("w_distance", w_distance);
+  check_non_negative("w_smooth", w_smooth);
+  check_one_of("smoothness", smoothness, {"tikhonov", "first_order"});
+  check_positive("outlier_cells", outlier_cells);
+  check_range("subdivision", subdivision, 1, 4);
+  check_range("band_width", band_width, 0.5, 10.0);
+}
+
+nlohmann::json to_json(const RefinementReport& r) {
+  nlohmann::json solves = nlohmann::json::array();
+  for (const SolveReport& s : r.solves) solves.push_back(to_json(s));
+  return {{"rounds", r.rounds},
+          {"leaves_split", r.leaves_split},
+          {"control_points_before", r.control_points_before},
+          {"control_points_after", r.control_points_after},
+          {"target_level", r.target_level},
+          {"fitted_points", r.fitted_points},
+          {"mean_distance_before", r.before.mean},
+          {"max_distance_before", r.before.max},
+          {"mean_distance_after", r.after.mean},
+          {"max_distance_after", r.after.max},
+          {"solves", solves},
+          {"seconds", r.seconds}};
+}
+
+namespace {
+
+/// The strongest 2:1 balance the T-mesh satisfies: refining keeps it (refine_octree rebalances).
+Balance balance_of(const Octree& tree) {
+  if (is_balanced(tree, Balance::vertex)) return Balance::vertex;
+  if (is_balanced(tree, Balance::edge)) return Balance::edge;
+  return Balance::face;
+}
+
+/// Coefficients on `basis` for the function `old`: kept where a control point has the same lattice
+/// position and knots as one of old's, the old f at the Greville point otherwise.
+std::vector<double> transfer(const TSpline& old, const TSplineBasis& basis) {
+  const TSplineBasis& previous = old.basis();
+  std::map<Int3, int> old_index;
+  for (int i = 0; i < previous.size(); ++i) old_index.emplace(previous.vertex(i), i);
+  std::vector<double> c(basis.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < basis.size(); ++i) {
+    const auto it = old_index.find(basis.vertex(i));
+    if (it != old_index.end() && previous.knots(it->second) == basis.knots(i)) c[i] = old.coefficients()[it->second];
+    else c[i] = old.evaluate(basis.greville(i));
+  }
+  return c;
+}
+
+}  // namespace
+
+RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
+                                 const FinalRefinementOptions& options, LevelSetSolver& solver,
+                                 const std::vector<Vec3>& focus) {
+  options.check();
+  if (points.empty()) throw AlgorithmError("final refinement: no data points");
+  Stopwatch clock;
+  RefinementReport report;
+  report.control_points_before = level_set.basis().size();
+  report.before = data_fit(level_set, points);
+
+  // 1. Refine, one level per round, the leaves the zero set crosses near the data (or the focus).
+  const DataDistance near(focus.empty() ? points : focus);
+  Octree tree = level_set.tmesh();
+  report.target_level = std::min(options.target_level < 0 ? tree.finest_leaf_level() : options.target_level,
+                                 tree.max_depth());
+  const Balance balance = balance_of(tree);
+  ZeroSetSampling sampling;
+  sampling.subdivision = options.subdivision;
+  sampling.band_width = options.band_width;
+  sampling.hessians = false;
+  for (;;) {
+    const ZeroSetSamples samples = sample_zero_set(level_set, tree, sampling);
+    std::vector<int> split;
+    for (const SurfacePoint& p : samples.surface) {
+      if (tree.leaf(p.leaf).level >= report.target_level) continue;
+      if (near.nearest(p.position).distance <= options.data_reach * p.cell_size) split.push_back(p.leaf);
+    }
+    std::sort(split.begin(), split.end());
+    split.erase(std::unique(split.begin(), split.end()), split.end());
+    if (split.empty()) break;
+    tree = refine_octree(tree, split, balance);
+    report.leaves_split += int(split.size());
+    ++report.rounds;
+  }
+
+  // 2. Transfer f onto the refined T-mesh.
+  std::shared_ptr<const TSplineBasis> basis = level_set.shared_basis();
+  std::vector<double> c = level_set.coefficients();
+  if (report.rounds > 0) {
+    basis = std::make_shared<TSplineBasis>(std::move(tree));
+    c = transfer(level_set, *basis);
+  }
+  TSpline f(basis, std::move(c));
+  report.control_points_after = basis->size();
+
+  // 3. Gauss-Newton steps of the direct fit.
+  const Smoothness smoothness = smoothness_from_string(options.smoothness);
+  std::vector<std::array<int, 2>> edges;
+  if (smoothness == Smoothness::first_order && options.w_smooth > 0.0) edges = control_edges(*basis);
+  const Octree& mesh = basis->octree();
+  for (int it = 0; it < options.fit_iterations; ++it) {
+    LeastSquaresBuilder rows(*basis);
+    // Data rows: f(p_k) + sum_i R_i(p_k) delta_i = 0, for the points near the level set.
+    std::vector<Vec3> fitted;
+    std::vector<double> target;
+    fitted.reserve(points.size());
+    for (const Vec3& p : points) {
+      Vec3 g;
+      const double v = f.evaluate(p, &g);
+      const double side = mesh.leaf_side(mesh.locate(p));
+      if (std::abs(v) > options.outlier_cells * side * g.norm()) continue;
+      fitted.push_back(p);
+      target.push_back(-v);
+    }
+    report.fitted_points = int(fitted.size());
+    if (fitted.empty()) break;  // the level set is nowhere near the data: nothing to fit
+    rows.add_value_rows(fitted, target, 1.0);
+    // Distance-field rows: 2 grad f(y) . grad delta(y) = 1 - |grad f(y)|^2 on the band.
+    const ZeroSetSamples samples = sample_zero_set(f, mesh, sampling);
+    if (options.w_distance > 0.0 && !samples.band.empty()) {
+      std::vector<Vec3> direction(samples.band.size());
+      std::vector<double> rhs(samples.band.size());
+      for (std::size_t m = 0; m < samples.band.size(); ++m) {
+        direction[m] = 2.0 * samples.band_gradient[m];
+        rhs[m] = 1.0 - samples.band_gradient[m].squaredNorm();
+      }
+      rows.add_gradient_rows(samples.band, direction, rhs, options.w_distance);
+    }
+    const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
+    report.solves.push_back(solver.solve(system, delta));
+    std::vector<double>& coefficients = f.coefficients();
+    for (int k = 0; k < system.unknowns; ++k) coefficients[system.control[k]] += delta[k];
+  }
+  report.after = data_fit(f, points);
+  report.seconds = clock.seconds();
+  return {std::move(f), std::move(report)};
+}
+
+}  // namespace dtsl

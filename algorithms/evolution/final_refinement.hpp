@@ -1,0 +1,84 @@
+// The final refinement of the level set ([55], DESIGN.md §1 end; paper §2.1: "that paper also
+// discusses a 'final refinement' step, which can be used to improve the result, especially for noisy
+// data", and §3.2: "find a better base surface by using more degrees of freedom ... and applying the
+// 'final refinement' step"):
+//
+//  1. refine the T-mesh where the zero set crosses leaves near the data (or near given focus points,
+//     e.g. where Phase 2's displacement flipped triangles) down to a target level;
+//  2. transfer f to the refined T-mesh: control points whose knot vectors did not change keep their
+//     coefficient (f is unchanged where only they are active), the new or changed ones take the old
+//     f at their Greville point (quasi-interpolation);
+//  3. fit directly, by Gauss–Newton steps delta on the coefficients starting from the transferred ones:
+//        sum_k f(p_k)^2 / K  +  w_D sum_m (|grad f(y_m)|^2 - 1)^2 / M  +  w_S delta^T R delta / n ,
+//     the distance-field term linearised as in the evolution (2 grad f . grad delta), so each step is
+//     the same kind of least-squares system the evolution's solvers already solve. Data points
+//     farther than outlier_cells leaf sides from the level set are left out of the fit (outliers,
+//     or data the evolution did not reach: they would drag the surface across the cell).
+// Holes in the data keep their coarse cells and get no data rows: the fill stays smooth.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "algorithms/evolution/data_fit.hpp"
+#include "algorithms/evolution/solver.hpp"
+#include "algorithms/tspline/tspline.hpp"
+#include "framework/config/options.hpp"
+
+namespace dtsl {
+
+struct FinalRefinementOptions final : Options {
+  int target_level = -1;
+  double data_reach = 1.0;
+  int fit_iterations = 2;
+  double w_distance = 1.0;
+  double w_smooth = 1e-3;
+  std::string smoothness = "tikhonov";
+  double outlier_cells = 2.0;
+  int subdivision = 1;
+  double band_width = 2.0;
+
+  void visit(FieldVisitor& v) override {
+    v.field("target_level", target_level,
+            "refine surface cells near data to this octree level; -1 = the finest level the T-mesh already "
+            "has (capped at its max_depth)");
+    v.field("data_reach", data_reach,
+            "a leaf the zero set crosses is refined if a data point lies within data_reach x its side of the "
+            "surface in it");
+    v.field("fit_iterations", fit_iterations, "Gauss-Newton steps of the direct fit (0: refine and transfer only)");
+    v.field("w_distance", w_distance, "weight w_D of the distance-field term |grad f|^2 = 1");
+    v.field("w_smooth", w_smooth, "weight w_S of the smoothness of each Gauss-Newton step");
+    v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (T-mesh graph Laplacian)");
+    v.field("outlier_cells", outlier_cells,
+            "data points farther than this many leaf sides from the level set are left out of the fit");
+    v.field("subdivision", subdivision, "band samples: centres of s^3 sub-cells per leaf");
+    v.field("band_width", band_width, "distance-field band: |f| / |grad f| < band_width x leaf side");
+  }
+  void check() const override;
+};
+
+struct RefinementReport {
+  int rounds = 0;                  ///< octree refinement rounds (one level each)
+  int leaves_split = 0;
+  int control_points_before = 0, control_points_after = 0;
+  int target_level = 0;
+  int fitted_points = 0;           ///< data points in the fit (outliers left out)
+  DataFit before, after;           ///< data-to-level-set distance before refinement and after the fit
+  std::vector<SolveReport> solves;
+  double seconds = 0.0;
+};
+nlohmann::json to_json(const RefinementReport& r);
+
+struct RefinedLevelSet {
+  TSpline level_set;
+  RefinementReport report;
+};
+
+/// Refines `level_set` near `points` (or, if `focus` is not empty, only where the zero set passes
+/// within data_reach leaf sides of a focus point) and fits it to `points`. ConfigError for invalid
+/// options; AlgorithmError for no points or a solver failure.
+RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
+                                 const FinalRefinementOptions& options, LevelSetSolver& solver,
+                                 const std::vector<Vec3>& focus = {});
+
+}  // namespace dtsl

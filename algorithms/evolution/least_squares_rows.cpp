@@ -1,0 +1,220 @@
+#include "algorithms/evolution/least_squares_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "framework/core/error.hpp"
+
+namespace dtsl {
+
+Smoothness smoothness_from_string(const std::string& name) {
+  if (name == "tikhonov") return Smoothness::tikhonov;
+  if (name == "first_order") return Smoothness::first_order;
+  throw ConfigError("smoothness: must be one of {tikhonov, first_order}, got '" + name + "'");
+}
+
+const char* to_string(Smoothness s) { return s == Smoothness::tikhonov ? "tikhonov" : "first_order"; }
+
+std::vector<std::array<int, 2>> control_edges(const TSplineBasis& basis) {
+  const Octree& tree = basis.octree();
+  const std::int64_t side = tree.resolution() + 1;
+  auto key = [side](const Int3& p) { return (std::int64_t(p[2]) * side + p[1]) * side + p[0]; };
+  std::unordered_map<std::int64_t, int> control_at;
+  control_at.reserve(std::size_t(basis.size()) * 2);
+  for (int i = 0; i < basis.size(); ++i) control_at.emplace(key(basis.vertex(i)), i);
+
+  std::vector<std::array<int, 2>> edges;
+  for (int l = 0; l < tree.leaf_count(); ++l) {
+    const Octree::Cell& cell = tree.leaf(l);
+    const int s = tree.cell_size(cell.level);
+    for (int axis = 0; axis < 3; ++axis) {
+      const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+      for (int corner = 0; corner < 4; ++corner) {
+        Int3 p = cell.origin;
+        p[a1] += (corner & 1) ? s : 0;
+        p[a2] += (corner & 2) ? s : 0;
+        // Walk the edge one lattice unit at a time: hanging vertices of finer neighbours lie on it.
+        int previous = control_at.at(key(p));
+        for (int t = 1; t <= s; ++t) {
+          ++p[axis];
+          const auto it = control_at.find(key(p));
+          if (it == control_at.end()) continue;
+          edges.push_back({std::min(previous, it->second), std::max(previous, it->second)});
+          previous = it->second;
+        }
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+double LeastSquaresSystem::objective(const Eigen::VectorXd& u) const {
+  double sum = 0.0;
+  for (int r = 0; r < rows(); ++r) {
+    double a = -rhs[r];
+    for (int e = row_begin[r]; e < row_begin[r + 1]; ++e) a += value[e] * u[column[e]];
+    sum += weight[r] * a * a;
+  }
+  return sum;
+}
+
+Eigen::VectorXd LeastSquaresSystem::normal_residual(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(unknowns);
+  for (int r = 0; r < rows(); ++r) {
+    double a = -rhs[r];
+    for (int e = row_begin[r]; e < row_begin[r + 1]; ++e) a += value[e] * u[column[e]];
+    a *= weight[r];
+    for (int e = row_begin[r]; e < row_begin[r + 1]; ++e) g[column[e]] += value[e] * a;
+  }
+  return g;
+}
+
+double LeastSquaresSystem::relative_residual(const Eigen::VectorXd& u) const {
+  const double residual = normal_residual(u).norm();
+  const double scale = normal_residual(Eigen::VectorXd::Zero(unknowns)).norm();  // |A^T W b|
+  if (scale == 0.0) return residual == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+  return residual / scale;
+}
+
+std::vector<double> LeastSquaresSystem::expand(const Eigen::VectorXd& u, int controls) const {
+  std::vector<double> full(controls, 0.0);
+  for (int k = 0; k < unknowns; ++k) full[control[k]] = u[k];
+  return full;
+}
+
+Eigen::VectorXd LeastSquaresSystem::restrict(const std::vector<double>& full) const {
+  Eigen::VectorXd u(unknowns);
+  for (int k = 0; k < unknowns; ++k) u[k] = control[k] < int(full.size()) ? full[control[k]] : 0.0;
+  return u;
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+void LeastSquaresBuilder::add_value_rows(const std::vector<Vec3>& x, const std::vector<double>& target,
+                                         double weight) {
+  add_rows(Kind::value, x, nullptr, target, weight);
+}
+
+void LeastSquaresBuilder::add_gradient_rows(const std::vector<Vec3>& y, const std::vector<Vec3>& direction,
+                                            const std::vector<double>& target, double weight) {
+  if (direction.size() != y.size()) throw AlgorithmError("least squares: one direction per gradient row needed");
+  add_rows(Kind::gradient, y, &direction, target, weight);
+}
+
+void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
+                                   const std::vector<double>& target, double weight) {
+  if (target.size() != x.size()) throw AlgorithmError("least squares: one target per row needed");
+  if (x.empty()) return;
+  const double row_weight = weight / double(x.size());
+  // Each thread fills its own block of consecutive points; blocks are appended in order, so the rows
+  // come out in point order whatever the thread count.
+  int threads = 1;
+#ifdef _OPENMP
+  threads = std::max(1, std::min(omp_get_max_threads(), int(x.size() / 64) + 1));
+#endif
+  struct Block {
+    std::vector<int> count, column;
+    std::vector<double> value;
+  };
+  std::vector<Block> blocks(threads);
+  const long n = long(x.size());
+#pragma omp parallel num_threads(threads)
+  {
+    int t = 0;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+#endif
+    const long begin = n * t / threads, end = n * (t + 1) / threads;
+    Block& b = blocks[t];
+    ActiveBasis active;
+    b.count.reserve(end - begin);
+    for (long k = begin; k < end; ++k) {
+      basis_.active(x[k], active, false);
+      b.count.push_back(active.size());
+      for (int e = 0; e < active.size(); ++e) {
+        b.column.push_back(active.index[e]);
+        b.value.push_back(kind == Kind::value ? active.value[e] : (*direction)[k].dot(active.gradient[e]));
+      }
+    }
+  }
+  for (const Block& b : blocks) {
+    for (int c : b.count) row_begin_.push_back(row_begin_.back() + c);
+    column_.insert(column_.end(), b.column.begin(), b.column.end());
+    value_.insert(value_.end(), b.value.begin(), b.value.end());
+  }
+  rhs_.insert(rhs_.end(), target.begin(), target.end());
+  weight_.insert(weight_.end(), x.size(), row_weight);
+  (kind == Kind::value ? value_rows_ : gradient_rows_) += int(x.size());
+}
+
+LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smoothness_weight,
+                                               const std::vector<std::array<int, 2>>* edges) {
+  if (rhs_.empty()) throw AlgorithmError("least squares: no rows");
+  LeastSquaresSystem s;
+  // Unknowns: the control points touched by a row, in control order (deterministic).
+  std::vector<int> unknown_of(basis_.size(), -1);
+  for (int c : column_) unknown_of[c] = 0;
+  for (int i = 0; i < basis_.size(); ++i)
+    if (unknown_of[i] == 0) {
+      unknown_of[i] = int(s.control.size());
+      s.control.push_back(i);
+    }
+  s.unknowns = int(s.control.size());
+  s.row_begin = std::move(row_begin_);
+  s.column = std::move(column_);
+  for (int& c : s.column) c = unknown_of[c];
+  s.value = std::move(value_);
+  s.rhs = std::move(rhs_);
+  s.weight = std::move(weight_);
+  s.value_rows = value_rows_;
+  s.gradient_rows = gradient_rows_;
+
+  auto add_row = [&s](std::initializer_list<std::pair<int, double>> entries, double w) {
+    for (const auto& [c, v] : entries) {
+      s.column.push_back(c);
+      s.value.push_back(v);
+    }
+    s.row_begin.push_back(int(s.column.size()));
+    s.rhs.push_back(0.0);
+    s.weight.push_back(w);
+    ++s.smoothness_rows;
+  };
+  if (smoothness_weight > 0.0) {
+    if (smoothness == Smoothness::tikhonov) {
+      const double w = smoothness_weight / s.unknowns;
+      for (int k = 0; k < s.unknowns; ++k) add_row({{k, 1.0}}, w);
+    } else {
+      if (!edges) throw AlgorithmError("least squares: first-order smoothness needs the T-mesh edges");
+      // Edges with one end outside the unknowns tie the other end to its neighbour's zero update.
+      int count = 0;
+      for (const auto& e : *edges) count += unknown_of[e[0]] >= 0 || unknown_of[e[1]] >= 0;
+      const double w = smoothness_weight / std::max(count, 1);
+      for (const auto& e : *edges) {
+        const int a = unknown_of[e[0]], b = unknown_of[e[1]];
+        if (a >= 0 && b >= 0) add_row({{a, 1.0}, {b, -1.0}}, w);
+        else if (a >= 0) add_row({{a, 1.0}}, w);
+        else if (b >= 0) add_row({{b, 1.0}}, w);
+      }
+      // The graph Laplacian leaves a constant shift free where no row pins it: a tiny Tikhonov term
+      // (1e-6 of the smoothness weight) keeps the normal equations positive definite.
+      const double tiny = 1e-6 * smoothness_weight / s.unknowns;
+      for (int k = 0; k < s.unknowns; ++k) add_row({{k, 1.0}}, tiny);
+    }
+  }
+  row_begin_ = {0};
+  value_rows_ = gradient_rows_ = 0;
+  return s;
+}
+
+}  // namespace dtsl

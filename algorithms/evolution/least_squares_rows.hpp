@@ -1,0 +1,106 @@
+// The linear least-squares problems of the level-set stage, as weighted rows over T-spline
+// coefficients (DESIGN.md §1):
+//
+//   evolution step, unknowns c' (the time derivative of the coefficients):
+//     value rows     f'(x_j) = -v(x_j) |grad f(x_j)|                              (follow the velocity)
+//     gradient rows  2 dt grad f(y_m) . grad f'(y_m) = 1 - |grad f(y_m)|^2          (distance field)
+//     smoothness     w_S c'^T R c'
+//   final refinement, unknowns delta (a Gauss-Newton step on the coefficients):
+//     value rows     f(p_k) + delta-part = 0                                      (fit the data)
+//     gradient rows  2 grad f(y_m) . grad delta-part = 1 - |grad f(y_m)|^2          (distance field)
+//     smoothness     w_S delta^T R delta
+//
+// where f' = sum_i c'_i R_i with R_i = B_i / sum_j B_j (TSplineBasis::active). Every kind of row is
+// weighted by (its weight) / (number of rows of that kind), so the balance between the terms does not
+// depend on how densely each is sampled (DESIGN.md §1). The smoothness term is stored as rows too
+// (R = I: one row per unknown; first-order: one row c'_a - c'_b per T-mesh edge), so that every
+// solver — normal equations or Ceres — sees one uniform problem.
+//
+// Only control points that some value or gradient row touches are unknowns (renumbered densely); the
+// others keep a zero update. With R = I this is exact (their normal equations read w c'_i = 0); with
+// the first-order R it drops the coupling of untouched control points to each other, which cannot
+// move the zero set.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "algorithms/tspline/tspline_basis.hpp"
+
+namespace dtsl {
+
+/// R in w_S c'^T R c' (DESIGN.md §1: "a thin-plate or first-order smoothness matrix ... (ours)").
+enum class Smoothness {
+  tikhonov,     ///< R = I: small updates
+  first_order,  ///< R = the graph Laplacian of the T-mesh edges: neighbouring control points move alike
+};
+Smoothness smoothness_from_string(const std::string& name);  // ConfigError naming the value
+const char* to_string(Smoothness s);
+
+/// The T-mesh's edges as pairs of control point indices (each leaf-cell edge between two consecutive
+/// vertices of the lattice, hanging vertices included), each pair once: the graph of the first-order
+/// smoothness.
+std::vector<std::array<int, 2>> control_edges(const TSplineBasis& basis);
+
+/// minimise sum_r weight_r (a_r . u - rhs_r)^2 over the unknowns u. Rows in compressed sparse row
+/// form, columns in [0, unknowns).
+struct LeastSquaresSystem {
+  int unknowns = 0;
+  std::vector<int> control;        ///< unknown -> control point index of the basis
+  std::vector<int> row_begin{0};   ///< row r is entries [row_begin[r], row_begin[r + 1])
+  std::vector<int> column;
+  std::vector<double> value;
+  std::vector<double> rhs, weight;
+  int value_rows = 0, gradient_rows = 0, smoothness_rows = 0;  ///< rows of each kind (smoothness rows last)
+
+  int rows() const { return int(rhs.size()); }
+  std::size_t nonzeros() const { return column.size(); }
+
+  /// sum_r weight_r (a_r . u - rhs_r)^2.
+  double objective(const Eigen::VectorXd& u) const;
+  /// A^T W (A u - b): the gradient of the objective / 2, zero at the minimiser.
+  Eigen::VectorXd normal_residual(const Eigen::VectorXd& u) const;
+  /// |A^T W (A u - b)| / |A^T W b| (0 for u = 0 and b = 0): how far u is from solving the normal
+  /// equations, independent of scale. Every solver reports it, and fails above its tolerance.
+  double relative_residual(const Eigen::VectorXd& u) const;
+
+  /// The unknowns as a full coefficient vector (zero for control points that are not unknowns).
+  std::vector<double> expand(const Eigen::VectorXd& u, int controls) const;
+  /// The restriction of a full coefficient vector to the unknowns (a warm start).
+  Eigen::VectorXd restrict(const std::vector<double>& full) const;
+};
+
+/// Collects rows over the global control indices of a basis, then renumbers them (finish()).
+class LeastSquaresBuilder {
+ public:
+  explicit LeastSquaresBuilder(const TSplineBasis& basis) : basis_(basis) {}
+
+  /// One row per point: sum_i R_i(x_k) u_i = target[k]. The kind's weight is spread over its rows:
+  /// each gets weight / x.size(). OpenMP-parallel; rows keep the order of the points.
+  void add_value_rows(const std::vector<Vec3>& x, const std::vector<double>& target, double weight);
+  /// One row per point: sum_i (direction[k] . grad R_i(y_k)) u_i = target[k], weight / y.size() each.
+  void add_gradient_rows(const std::vector<Vec3>& y, const std::vector<Vec3>& direction,
+                         const std::vector<double>& target, double weight);
+
+  /// The unknowns (control points touched by a row), the rows renumbered, and the smoothness rows
+  /// over the unknowns with total weight `smoothness_weight` (spread over their rows). `edges` is
+  /// needed for first_order only (control_edges(basis), computed once per T-mesh by the caller).
+  /// AlgorithmError if no row was added.
+  LeastSquaresSystem finish(Smoothness smoothness, double smoothness_weight,
+                            const std::vector<std::array<int, 2>>* edges = nullptr);
+
+ private:
+  enum class Kind { value, gradient };
+  void add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
+                const std::vector<double>& target, double weight);
+
+  const TSplineBasis& basis_;
+  std::vector<int> row_begin_{0};
+  std::vector<int> column_;  // global control indices until finish()
+  std::vector<double> value_, rhs_, weight_;
+  int value_rows_ = 0, gradient_rows_ = 0;
+};
+
+}  // namespace dtsl

@@ -1,0 +1,23 @@
+// The normal equations A^T W A u = A^T W b of a LeastSquaresSystem, for the solvers that factorise or
+// iterate on them (`eigen_ldlt`, `eigen_cg`). Sparse and symmetric positive definite (DESIGN.md §1)
+// as long as every unknown has a smoothness row or enough other rows.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "algorithms/evolution/least_squares_rows.hpp"
+
+namespace dtsl {
+
+struct NormalEquations {
+  /// A^T W A, lower triangle (diagonal included) only, column-major with sorted indices.
+  Eigen::SparseMatrix<double> lower;
+  Eigen::VectorXd rhs;  ///< A^T W b
+};
+
+/// Column by column with a dense accumulator (OpenMP-parallel over columns): the work is
+/// sum over rows of (entries per row)^2 / 2, with no triplet list and no sort of the whole matrix.
+NormalEquations normal_equations(const LeastSquaresSystem& system);
+
+}  // namespace dtsl

@@ -1,0 +1,107 @@
+// `eigen_cg`: conjugate gradients on the normal equations, warm-started from the caller's guess (the
+// evolution passes the previous step's c', DESIGN.md §1), with a Jacobi or incomplete-Cholesky
+// preconditioner. CG that misses its tolerance within max_iterations either throws (on_failure =
+// error: an AlgorithmError naming eigen_cg and the residual) or, documented and tested, falls back
+// to the direct eigen_ldlt factorisation of the same normal equations (on_failure = eigen_ldlt),
+// recorded in the report (fell_back, solver = "eigen_ldlt").
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
+#include "algorithms/evolution/normal_equations.hpp"
+#include "algorithms/evolution/solvers/solvers.hpp"
+#include "framework/core/timer.hpp"
+
+namespace dtsl {
+
+namespace {
+
+struct EigenCgOptions final : Options {
+  double tolerance = 1e-6;
+  int max_iterations = 2000;
+  std::string preconditioner = "jacobi";
+  std::string on_failure = "error";
+
+  void visit(FieldVisitor& v) override {
+    v.field("tolerance", tolerance,
+            "stop when the relative residual |N u - g| / |g| of the normal equations is below this");
+    v.field("max_iterations", max_iterations, "CG iteration cap");
+    v.field("preconditioner", preconditioner, "'jacobi' (diagonal) or 'incomplete_cholesky'");
+    v.field("on_failure", on_failure,
+            "when CG misses the tolerance: 'error' (AlgorithmError naming the residual) or 'eigen_ldlt' "
+            "(solve the same normal equations directly; the report says so)");
+  }
+  void check() const override {
+    check_range("tolerance", tolerance, 1e-16, 1.0);
+    check_range("max_iterations", max_iterations, 1, 1000000);
+    check_one_of("preconditioner", preconditioner, {"jacobi", "incomplete_cholesky"});
+    check_one_of("on_failure", on_failure, {"error", "eigen_ldlt"});
+  }
+};
+
+class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
+ public:
+  SolveReport solve(const LeastSquaresSystem& system, Eigen::VectorXd& solution) override {
+    Stopwatch clock;
+    SolveReport report;
+    report.solver = "eigen_cg";
+    const NormalEquations normal = normal_equations(system);
+    if (solution.size() != system.unknowns || !solution.allFinite()) solution = Eigen::VectorXd::Zero(system.unknowns);
+    double cg_error = 0.0;
+    bool converged = false;
+    if (options_.preconditioner == "jacobi") {
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> cg;
+      converged = run(cg, normal, solution, report.iterations, cg_error);
+    } else {
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower,
+                               Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>> cg;
+      converged = run(cg, normal, solution, report.iterations, cg_error);
+    }
+    report.relative_residual = system.relative_residual(solution);
+    report.details = {{"cg_error", cg_error}, {"preconditioner", options_.preconditioner}};
+    if (!converged) {
+      if (options_.on_failure == "error")
+        solver_failed("eigen_cg", "no convergence in " + std::to_string(report.iterations) + " iterations",
+                      report.relative_residual, options_.tolerance);
+      // Documented fallback: the direct factorisation of the same normal equations.
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(normal.lower);
+      if (ldlt.info() != Eigen::Success)
+        solver_failed("eigen_cg", "no convergence, and the eigen_ldlt fallback could not factorise",
+                      report.relative_residual, options_.tolerance);
+      report.details["cg_iterations"] = report.iterations;
+      report.details["cg_relative_residual"] = report.relative_residual;
+      solution = ldlt.solve(normal.rhs);
+      report.relative_residual = system.relative_residual(solution);
+      report.solver = "eigen_ldlt";
+      report.fell_back = true;
+    }
+    report.seconds = clock.seconds();
+    return report;
+  }
+
+ private:
+  template <class Cg>
+  bool run(Cg& cg, const NormalEquations& normal, Eigen::VectorXd& x, int& iterations, double& error) const {
+    cg.setTolerance(options_.tolerance);
+    cg.setMaxIterations(options_.max_iterations);
+    cg.compute(normal.lower);
+    if (cg.info() != Eigen::Success) {  // the incomplete Cholesky preconditioner broke down
+      iterations = 0;
+      error = std::numeric_limits<double>::infinity();
+      return false;
+    }
+    const Eigen::VectorXd guess = x;
+    x = cg.solveWithGuess(normal.rhs, guess);
+    iterations = int(cg.iterations());
+    error = cg.error();
+    return cg.info() == Eigen::Success && x.allFinite();
+  }
+};
+
+}  // namespace
+
+void add_eigen_cg_solver(Registry<LevelSetSolver>& registry) {
+  registry.add("eigen_cg", "conjugate gradients on the normal equations, warm-started from the last step",
+               [] { return std::make_unique<EigenCgSolver>(); });
+}
+
+}  // namespace dtsl

@@ -1,0 +1,38 @@
+// `geodesic`: v = -(grad d . n + lambda d kappa) (DESIGN.md §1): the gradient flow of the surface
+// integral of d, i.e. geodesic active contours / the Zhao–Osher–Fedkiw model (the paper's refs [9] and
+// [57]). Far from the data grad d . n is about 1, so the surface moves inward at unit speed; on the
+// data grad d . n jumps from +1 (just outside the samples) to -1 (just inside), so the surface
+// settles there but jitters by about one time step around it (DESIGN.md §1's lesson): the evolution's
+// stopping rule on the data distance ends it.
+#include "algorithms/evolution/velocities/velocities.hpp"
+
+namespace dtsl {
+
+namespace {
+
+struct GeodesicVelocityOptions final : Options {
+  double lambda = 1.0;
+
+  void visit(FieldVisitor& v) override {
+    v.field("lambda", lambda,
+            "weight of the curvature term: v = -(grad d . n + lambda d kappa); the d factor makes it "
+            "vanish on the data");
+  }
+  void check() const override { check_range("lambda", lambda, 0.0, 100.0); }
+};
+
+class GeodesicVelocity final : public VelocityWith<GeodesicVelocityOptions, GeodesicVelocity> {
+ public:
+  double speed(const VelocitySample& s) const override {
+    return -(s.distance_gradient.dot(s.normal) + options_.lambda * s.distance * s.curvature);
+  }
+};
+
+}  // namespace
+
+void add_geodesic_velocity(Registry<Velocity>& registry) {
+  registry.add("geodesic", "v = -(grad d . n + lambda d kappa): geodesic active contours (Zhao-Osher-Fedkiw)",
+               [] { return std::make_unique<GeodesicVelocity>(); });
+}
+
+}  // namespace dtsl

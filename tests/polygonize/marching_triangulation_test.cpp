@@ -1,0 +1,148 @@
+// What marching triangulation promises beyond every polygonizer's contract (paper §2.2): vertices on
+// f = 0 to Newton tolerance, a semi-regular mesh (most vertices of valence 6, no thin triangles),
+// edges of about the step, the seven-step seeding, and clear errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "algorithms/polygonize/marching_triangulation.hpp"
+#include "framework/core/error.hpp"
+#include "framework/metrics/metrics.hpp"
+#include "tests/polygonize/implicits.hpp"
+#include "tests/polygonize/support.hpp"
+
+using namespace dtsl;
+using namespace dtsl::test;
+
+namespace {
+
+MarchingTriangulationOptions with_step(double step) {
+  MarchingTriangulationOptions o;
+  o.step = step;
+  return o;
+}
+
+double mean_edge_length(const TriangleMesh& m) {
+  std::set<std::pair<int, int>> edges;
+  for (const Face& t : m.faces)
+    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+  double sum = 0.0;
+  for (const auto& e : edges) sum += (m.vertices[e.first] - m.vertices[e.second]).norm();
+  return sum / static_cast<double>(edges.size());
+}
+
+}  // namespace
+
+TEST_CASE("marching triangulation is semi-regular with vertices on the surface", "[polygonize][marching_triangulation]") {
+  const Sphere sphere(Vec3(0.05, -0.03, 0.02), 0.8);
+  const Torus torus(Vec3(0.02, 0.01, -0.03), 0.7, 0.25);
+  for (const AnalyticImplicit* shape : {static_cast<const AnalyticImplicit*>(&sphere), static_cast<const AnalyticImplicit*>(&torus)}) {
+    const std::vector<Vec3> data = surface_points(*shape, shape->domain(), 1000, 21);
+    for (const double step : {0.05, 0.03}) {
+      INFO(shape->name() << ", step " << step);
+      const MarchingTriangulationOptions options = with_step(step);
+      const PolygonizeResult r = marching_triangulation(*shape, data, options);
+      const MeshStats st = mesh_stats(r.mesh);
+      REQUIRE(st.watertight);
+      // Every vertex is a converged Newton projection: |f| / |grad f| below the tolerance.
+      double worst = 0.0;
+      for (const Vec3& v : r.mesh.vertices) {
+        Vec3 g;
+        worst = std::max(worst, std::abs(shape->evaluate(v, &g)) / g.norm());
+      }
+      CHECK(worst < options.newton_tolerance);
+      // The paper's semi-regularity claim, as DESIGN.md §2 and issue 4 quantify it.
+      CHECK(st.valence6_fraction >= 0.70);
+      CHECK(st.min_angle_p01_deg > 25.0);
+      // The step sets the edge length.
+      const double mean = mean_edge_length(r.mesh);
+      CHECK(mean > 0.85 * step);
+      CHECK(mean < 1.15 * step);
+      // The summary's quality numbers are the metrics module's.
+      CHECK(r.summary.quality.valence6_fraction == Approx(st.valence6_fraction));
+      CHECK(r.summary.quality.min_angle_p01_deg == Approx(st.min_angle_p01_deg));
+      CHECK(r.summary.quality.min_angle_deg == Approx(st.min_angle_deg));
+      CHECK(r.summary.quality.min_angle_mean_deg == Approx(st.min_angle_mean_deg));
+      CHECK(r.summary.quality.boundary_edges == 0);
+    }
+  }
+}
+
+TEST_CASE("marching triangulation grows handles by joining fronts", "[polygonize][marching_triangulation]") {
+  // A disk-shaped front can only become a surface of genus g by joins (splits and merges): the
+  // summary shows them, and the sphere needs none.
+  const Sphere sphere(Vec3::Zero(), 0.7);
+  const DoubleTorus double_torus;
+  const PolygonizeResult s = marching_triangulation(sphere, surface_points(sphere, sphere.domain(), 300, 1), with_step(0.05));
+  const PolygonizeResult d =
+      marching_triangulation(double_torus, surface_points(double_torus, double_torus.domain(), 300, 1), with_step(0.04));
+  CHECK(mesh_stats(d.mesh).genus == Approx(2));
+  CHECK(d.summary.details.at("splits").get<int>() + d.summary.details.at("merges").get<int>() >= 2);
+  CHECK(s.summary.details.at("merges").get<int>() == 0);
+}
+
+TEST_CASE("marching triangulation is deterministic", "[polygonize][marching_triangulation]") {
+  const DoubleTorus shape;
+  const std::vector<Vec3> data = surface_points(shape, shape.domain(), 500, 4);
+  const PolygonizeResult a = marching_triangulation(shape, data, with_step(0.05));
+  const PolygonizeResult b = marching_triangulation(shape, data, with_step(0.05));
+  REQUIRE(a.mesh.faces.size() == b.mesh.faces.size());
+  CHECK(a.mesh.faces == b.mesh.faces);
+  CHECK(a.mesh.vertices == b.mesh.vertices);
+}
+
+TEST_CASE("marching triangulation seeds from the data's foot points", "[polygonize][marching_triangulation][seeding]") {
+  const Sphere sphere(Vec3(0.1, 0.0, 0.0), 0.6);
+  SECTION("data off the surface are projected first (seeding step 1)") {
+    std::vector<Vec3> data = surface_points(sphere, sphere.domain(), 200, 8);
+    for (std::size_t i = 0; i < data.size(); ++i) data[i] += (i % 2 ? 0.05 : -0.05) * (data[i] - Vec3(0.1, 0, 0)).normalized();
+    const PolygonizeResult r = marching_triangulation(sphere, data, with_step(0.05));
+    CHECK(mesh_stats(r.mesh).components == 1);
+    CHECK(r.summary.seed_candidates == data.size());
+    CHECK(r.summary.seed_failures == 0);
+  }
+  SECTION("a component smaller than the step is dropped and counted") {
+    const TwoSpheres shape(Vec3(-0.3, 0, 0), 0.6, Vec3(0.9, 0.0, 0.0), 0.01);
+    std::vector<Vec3> data = surface_points(shape.first(), shape.domain(), 300, 9);
+    data.push_back(Vec3(0.9, 0.0, 0.02));  // a data point on the tiny sphere
+    const PolygonizeResult r = marching_triangulation(shape, data, with_step(0.05));
+    CHECK(mesh_stats(r.mesh).components == 1);
+    CHECK(r.summary.dropped_components >= 1);
+  }
+  SECTION("no usable seed is an error naming the cause") {
+    const Sphere tiny(Vec3::Zero(), 0.01);
+    CHECK_THROWS_WITH(marching_triangulation(tiny, {Vec3(0.0, 0.0, 0.02)}, with_step(0.05)), Catch::Contains("step"));
+    CHECK_THROWS_AS(marching_triangulation(tiny, {Vec3(0.0, 0.0, 0.02)}, with_step(0.05)), AlgorithmError);
+  }
+}
+
+TEST_CASE("marching triangulation stops at the domain and caps its work", "[polygonize][marching_triangulation]") {
+  SECTION("a level set leaving the domain gives open fronts, no error") {
+    const Plane plane;
+    const PolygonizeResult r = marching_triangulation(plane, {Vec3(0.1, 0.2, 0.0)}, with_step(0.1));
+    CHECK(r.summary.open_boundaries == 1);
+    CHECK(mesh_stats(r.mesh).nonmanifold_edges == 0);
+  }
+  SECTION("a front that cannot close within max_triangles is an error") {
+    const Sphere sphere(Vec3::Zero(), 0.8);
+    MarchingTriangulationOptions o = with_step(0.05);
+    o.max_triangles = 200;
+    CHECK_THROWS_WITH(marching_triangulation(sphere, {Vec3(0.8, 0, 0)}, o), Catch::Contains("max_triangles"));
+  }
+}
+
+TEST_CASE("marching triangulation options check their fields", "[polygonize][marching_triangulation][options]") {
+  MarchingTriangulationOptions o;
+  CHECK_NOTHROW(o.check());
+  o.join_distance = 3.0;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("join_distance"));
+  o = MarchingTriangulationOptions();
+  o.newton_tolerance = 0.0;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("newton_tolerance"));
+  o = MarchingTriangulationOptions();
+  o.max_components = 0;
+  CHECK_THROWS_AS(o.check(), ConfigError);
+}
