@@ -1,6 +1,7 @@
 #include "experiments/plugins.hpp"
 
 #include "algorithms/baselines/baselines.hpp"
+#include "algorithms/polygonize/polygonizer.hpp"
 #include "framework/datasets/dataset.hpp"
 
 namespace dtsl {
@@ -11,6 +12,7 @@ void register_all_plugins() {
   done = true;
   register_dataset_plugins();
   register_baselines();
+  register_polygonizers();
 }
 
 }  // namespace dtsl

@@ -11,7 +11,9 @@
 //      c. otherwise create n_t = floor(3 w / pi) + 1 triangles at p_m, with Hartmann's corrections
 //         (fewer triangles when w / n_t < 0.8 rad, two when one would leave a long edge, one when a
 //         neighbour is closer than delta / 2); the n_t - 1 new points are made in p_m's tangent plane
-//         at distance delta, equally spaced in angle, and projected onto f = 0 by Newton;
+//         at distance delta, equally spaced in angle, and projected onto f = 0 by Newton; each new
+//         point gets the distance check of b at once (ours: without it, on thin tubes at coarse
+//         steps a front could grow over another before the new point's turn came);
 //   3. until no front is left (or only fronts whose points all lie outside f's domain).
 // Taking the smallest angle first keeps the front convex-ish and the triangles near-equilateral;
 // the distance check is what lets fronts meet without overlapping (and what lets the mesh acquire

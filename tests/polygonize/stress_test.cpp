@@ -70,3 +70,31 @@ TEST_CASE("polygonizer robustness sweep", "[.stress]") {
   std::printf("%d runs, %d failures\n", runs, failures);
   CHECK(failures == 0);
 }
+
+TEST_CASE("polygonizer behaviour at too coarse steps", "[.coarse]") {
+  // A step near or above the curvature radius cannot give a faithful mesh; a polygonizer must then
+  // either still give a valid closed mesh or throw AlgorithmError, never return a broken one silently.
+  register_polygonizers();
+  const PolynomialDoubleTorus shape;
+  const std::vector<Vec3> data = surface_points(shape, shape.domain(), 500, 1);
+  int valid = 0, threw = 0, broken = 0;
+  for (const std::string& name : polygonizers().names())
+    for (double step = 0.015; step < 0.12; step *= 1.15) {
+      try {
+        auto p = polygonizers().create(name, "coarse");
+        set_option(p->options(), "step", step);
+        const PolygonizeResult r = p->polygonize(shape, data);
+        const MeshStats st = mesh_stats(r.mesh);
+        const std::size_t x = self_intersections(r.mesh);
+        const bool ok = st.watertight && x == 0;
+        (ok ? valid : broken)++;
+        std::printf("%s step %.4f: %s watertight=%d genus=%.1f comps=%zu selfX=%zu\n", name.c_str(), step,
+                    ok ? "valid" : "BROKEN", st.watertight, st.genus, st.components, x);
+      } catch (const Error& e) {
+        ++threw;
+        std::printf("%s step %.4f: threw %s\n", name.c_str(), step, e.what());
+      }
+    }
+  std::printf("valid %d, threw %d, broken %d\n", valid, threw, broken);
+  CHECK(broken == 0);
+}

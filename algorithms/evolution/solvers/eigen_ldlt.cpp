@@ -47,7 +47,8 @@ class EigenLdltSolver final : public SolverWith<EigenLdltOptions, EigenLdltSolve
     report.seconds = clock.seconds();
     report.details = {{"assemble_seconds", assemble},
                       {"nonzeros", normal.lower.nonZeros()},
-                      {"reused_analysis", same_pattern}};
+                      {"reused_analysis", same_pattern},
+                      {"factor_nonzeros", ldlt_.matrixL().nestedExpression().nonZeros()}};
     if (!solution.allFinite() || !(report.relative_residual <= options_.tolerance))
       solver_failed("eigen_ldlt", "solution misses the tolerance", report.relative_residual, options_.tolerance);
     return report;
