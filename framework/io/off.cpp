@@ -129,16 +129,7 @@ void write_off(const std::string& path, const std::vector<Vec3>& vertices, const
     std::string buf = normals.empty() ? "OFF\n" : "NOFF\n";
     buf += std::to_string(vertices.size()) + " " + std::to_string(faces.size()) + " 0\n";
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      for (int c = 0; c < 3; ++c) {
-        if (c > 0) buf += ' ';
-        append_number(buf, vertices[i][c]);
-      }
-      if (!normals.empty())
-        for (int c = 0; c < 3; ++c) {
-          buf += ' ';
-          append_number(buf, normals[i][c]);
-        }
-      buf += '\n';
+      append_point_line(buf, vertices[i], normals.empty() ? nullptr : &normals[i]);
       flush_if_large(out, buf);
     }
     for (const Face& f : faces) {

@@ -46,16 +46,7 @@ void write_xyz(const std::string& path, const std::vector<Vec3>& points, const s
   write_file_atomically(path, [&](std::ostream& out) {
     std::string buf;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      for (int c = 0; c < 3; ++c) {
-        if (c > 0) buf += ' ';
-        append_number(buf, points[i][c]);
-      }
-      if (!normals.empty())
-        for (int c = 0; c < 3; ++c) {
-          buf += ' ';
-          append_number(buf, normals[i][c]);
-        }
-      buf += '\n';
+      append_point_line(buf, points[i], normals.empty() ? nullptr : &normals[i]);
       flush_if_large(out, buf);
     }
     flush_if_large(out, buf, true);
