@@ -1,6 +1,7 @@
 #include "experiments/plugins.hpp"
 
 #include "algorithms/baselines/baselines.hpp"
+#include "algorithms/displacement/displacement.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "framework/datasets/dataset.hpp"
 
@@ -13,6 +14,7 @@ void register_all_plugins() {
   register_dataset_plugins();
   register_baselines();
   register_polygonizers();
+  register_displacers();
 }
 
 }  // namespace dtsl

@@ -8,6 +8,7 @@
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/sign_guard.hpp"
 #include "algorithms/evolution/zero_set.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
@@ -22,10 +23,13 @@ nlohmann::json to_json(const IterationRecord& r) {
                       {"surface_points", r.surface_points},
                       {"band_points", r.band_points},
                       {"unknowns", r.unknowns},
+                      {"guarded", r.guarded},
+                      {"velocity_residual", r.velocity_residual},
                       {"mean_speed", r.mean_speed},
                       {"max_speed", r.max_speed},
                       {"mean_distance", r.mean_distance},
                       {"max_distance", r.max_distance},
+                      {"mean_surface_distance", r.mean_surface_distance},
                       {"min_gradient", r.min_gradient},
                       {"max_gradient", r.max_gradient}};
   if (r.solve) j["solve"] = to_json(*r.solve);
@@ -43,11 +47,12 @@ struct Timings {
   }
 };
 
-/// The velocity at every zero-set point.
+/// The velocity at every zero-set point, and the distance d(x_j) to the data there.
 std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& data, const Velocity& velocity,
-                           double curvature_clamp) {
+                           double curvature_clamp, std::vector<double>& distance) {
   const long n = long(samples.surface.size());
   std::vector<double> v(n);
+  distance.resize(n);
 #pragma omp parallel for schedule(dynamic, 64)
   for (long j = 0; j < n; ++j) {
     const SurfacePoint& p = samples.surface[j];
@@ -57,7 +62,7 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
     const double limit = curvature_clamp / p.cell_size;
     s.curvature = std::clamp(mean_curvature(p.gradient, p.hessian), -limit, limit);
     const NearestData nearest = data.nearest(p.position);
-    s.distance = nearest.distance;
+    s.distance = distance[j] = nearest.distance;
     s.distance_gradient = nearest.direction;
     s.cell_size = p.cell_size;
     v[j] = velocity.speed(s);
@@ -86,9 +91,11 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
 
   ZeroSetSampling sampling;
   sampling.subdivision = options.subdivision;
+  sampling.band_subdivision = options.band_subdivision;
   sampling.band_width = options.band_width;
   sampling.hessians = true;
 
+  const std::vector<double> floors = sign_floors(basis, options.sign_guard);
   const DataDistance data(points);
   TSpline f = initial;
   std::vector<double> best = f.coefficients();
@@ -120,7 +127,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       break;
     }
     part.restart();
-    const std::vector<double> v = speeds(samples, data, velocity, options.curvature_clamp);
+    std::vector<double> surface_distance;
+    const std::vector<double> v = speeds(samples, data, velocity, options.curvature_clamp, surface_distance);
     timings.velocity += part.seconds();
     double sum_speed = 0.0, max_speed = 0.0, min_ratio = std::numeric_limits<double>::infinity();
     record.min_gradient = std::numeric_limits<double>::infinity();
@@ -134,18 +142,25 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       record.max_gradient = std::max(record.max_gradient, g);
     }
     record.mean_speed = sum_speed / double(v.size());
+    double sum_distance = 0.0;
+    for (double d : surface_distance) sum_distance += d;
+    record.mean_surface_distance = sum_distance / double(v.size());
+    // Progress: a chamfer distance, data to level set plus level set to data. The second half sees
+    // what the first cannot: a membrane still spanning a hole of the data (a torus not yet open), a
+    // neck between two components not yet pinched off.
+    const double progress = fit.mean + record.mean_surface_distance;
     record.max_speed = max_speed;
 
-    // Stopping rule (DESIGN.md §1): at rest, or the mean data distance no longer decreasing, or the cap.
-    // The iterate kept is the one closest to the data: `distance` never comes to rest and `geodesic`
-    // jitters about the data, so the last iterate is not always the best.
-    if (fit.mean < best_distance) {
-      best_distance = fit.mean;
+    // Stopping rule (DESIGN.md §1): at rest, or the distance between data and level set no longer
+    // decreasing, or the cap. The iterate kept is the one closest to the data: `distance` never comes
+    // to rest and `geodesic` jitters about the data, so the last iterate is not always the best.
+    if (progress < best_distance) {
+      best_distance = progress;
       best = f.coefficients();
       best_iteration = it;
     }
-    if (fit.mean < reference * (1.0 - options.distance_tolerance)) {
-      reference = fit.mean;
+    if (progress < reference * (1.0 - options.distance_tolerance)) {
+      reference = progress;
       stalled = 0;
     } else {
       ++stalled;
@@ -197,13 +212,27 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
     record.solve = solver.solve(system, update);
     timings.solve += part.seconds();
 
-    // Explicit Euler step c <- c + dt c'.
+    {
+      // How much of the prescribed motion the step realises: |A_v c' - b_v| / |b_v| over the
+      // velocity rows (0: exactly; the distance-field and smoothness terms pull it away from 0).
+      double r2 = 0.0, b2 = 0.0;
+      for (int r = 0; r < system.value_rows; ++r) {
+        double a = -system.rhs[r];
+        for (int e = system.row_begin[r]; e < system.row_begin[r + 1]; ++e) a += system.value[e] * update[system.column[e]];
+        r2 += a * a;
+        b2 += system.rhs[r] * system.rhs[r];
+      }
+      record.velocity_residual = b2 > 0.0 ? std::sqrt(r2 / b2) : 0.0;
+    }
+    // Explicit Euler step c <- c + dt c', guarded against nucleation away from the front.
     std::vector<double>& c = f.coefficients();
+    const std::vector<double> before = c;
     std::fill(last_update.begin(), last_update.end(), 0.0);
     for (int k = 0; k < system.unknowns; ++k) {
       c[system.control[k]] += dt * update[k];
       last_update[system.control[k]] = update[k];
     }
+    if (options.sign_guard > 0.0) record.guarded = guard_signs(system, system.value_rows, floors, before, c);
     record.seconds = clock.seconds();
     history.push_back(record);
   }
@@ -246,7 +275,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
   Stopwatch clock;
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
-  const TSpline initial = initial_level_set(basis, enclosing_sphere(points, options.initial_radius_factor));
+  const TSpline initial = initial_level_set(basis, enclosing_surface(points, options.initial_radius_factor, options.initial_box_margin));
   LevelSetResult result = evolve_level_set(initial, points, options);
   result.summary["tmesh_seconds"] = tmesh_seconds;
   result.summary["seconds"] = clock.seconds();

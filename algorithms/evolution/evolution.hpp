@@ -48,10 +48,13 @@ struct EvolutionOptions final : Options {
   double velocity_tolerance = 1e-3;
   double distance_tolerance = 1e-3;
   int patience = 3;
-  int subdivision = 1;
+  int subdivision = 2;
+  int band_subdivision = 2;
   double band_width = 2.0;
   double curvature_clamp = 2.0;
+  double sign_guard = 0.25;
   double initial_radius_factor = 1.1;
+  double initial_box_margin = 0.1;
   bool final_refinement = true;
   TMeshOptions tmesh;
   FinalRefinementOptions refinement;
@@ -83,9 +86,12 @@ struct IterationRecord {
   double seconds = 0.0;              ///< wall time since the evolution started, at the end of this step
   double time_step = 0.0;            ///< dt of the step taken (0 for the last record: no step)
   int surface_points = 0, band_points = 0, unknowns = 0;
+  int guarded = 0;                   ///< coefficients the no-nucleation guard held (sign_guard.hpp)
   double mean_speed = 0.0, max_speed = 0.0;  ///< mean and max |v| over the x_j
   double mean_distance = 0.0, max_distance = 0.0;  ///< data to level set, |f(p)| / |grad f(p)|
+  double mean_surface_distance = 0.0;  ///< level set to data: mean d(x_j) over the zero-set samples
   double min_gradient = 0.0, max_gradient = 0.0;   ///< |grad f| over the x_j
+  double velocity_residual = 0.0;    ///< |A_v c' - b_v| / |b_v|: the part of the prescribed motion not realised
   std::optional<SolveReport> solve;  ///< none for the last record
 };
 nlohmann::json to_json(const IterationRecord& r);
@@ -95,7 +101,7 @@ struct LevelSetResult {
   TSpline level_set;                    ///< T-mesh and coefficients (after the final refinement if on)
   TSpline evolved;                      ///< the evolution's result before the final refinement
   std::vector<IterationRecord> history;
-  int best_iteration = 0;               ///< the iterate kept: the one closest to the data
+  int best_iteration = 0;  ///< the iterate kept: smallest mean_distance + mean_surface_distance
   std::string stop_reason;              ///< "at rest", "distance stalled", "iteration cap", "level set vanished"
   std::optional<RefinementReport> refinement;
   nlohmann::json summary;               ///< options, counts, timings, stop reason, final distances

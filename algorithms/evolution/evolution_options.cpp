@@ -63,9 +63,12 @@ EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
   distance_tolerance = other.distance_tolerance;
   patience = other.patience;
   subdivision = other.subdivision;
+  band_subdivision = other.band_subdivision;
   band_width = other.band_width;
   curvature_clamp = other.curvature_clamp;
+  sign_guard = other.sign_guard;
   initial_radius_factor = other.initial_radius_factor;
+  initial_box_margin = other.initial_box_margin;
   final_refinement = other.final_refinement;
   tmesh = other.tmesh;
   refinement = other.refinement;
@@ -119,16 +122,26 @@ void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("max_iterations", max_iterations, "iteration cap of the evolution");
   v.field("velocity_tolerance", velocity_tolerance, "at rest when the mean |v| on the zero set falls below this");
   v.field("distance_tolerance", distance_tolerance,
-          "the mean data-to-level-set distance counts as decreasing if it falls by this fraction");
-  v.field("patience", patience, "stop after this many steps without the mean data distance decreasing");
-  v.field("subdivision", subdivision, "zero-set and band samples: centres of s^3 sub-cells of every leaf");
+          "the distance between data and level set (mean data-to-level-set + mean level-set-to-data) counts "
+          "as decreasing if it falls by this fraction");
+  v.field("patience", patience, "stop after this many steps without that distance decreasing");
+  v.field("subdivision", subdivision,
+          "zero-set samples x_j: centres of s^3 sub-cells of every leaf, projected onto f = 0 (s = 1 lets "
+          "bumps grow between the samples)");
+  v.field("band_subdivision", band_subdivision, "distance-field band samples y_m: centres of b^3 sub-cells of every leaf");
   v.field("band_width", band_width,
           "distance-field band: |f| / |grad f| < band_width x the leaf side (DESIGN.md: 2 h_min)");
   v.field("curvature_clamp", curvature_clamp,
           "|kappa| is capped at curvature_clamp / leaf side: the T-mesh cannot carry finer curvature, and "
           "near a critical point of f kappa blows up");
+  v.field("sign_guard", sign_guard,
+          "no nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign and stays at "
+          "least this fraction of its cell size from zero; 0 disables");
   v.field("initial_radius_factor", initial_radius_factor,
           "initial sphere radius = this x the largest distance of a point from the bbox centre (DESIGN.md: 1.1)");
+  v.field("initial_box_margin", initial_box_margin,
+          "the initial sphere is clipped to the data's box grown by this on every side, so that it starts "
+          "inside the T-mesh's domain (ours; <= 0: the sphere alone)");
   v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution ([55])");
   sync_plugins();
   PrefixedVisitor velocity_fields(v, "velocity_");
@@ -155,9 +168,14 @@ void EvolutionOptions::check() const {
   check_range("distance_tolerance", distance_tolerance, 0.0, 1.0);
   check_range("patience", patience, 1, 100000);
   check_range("subdivision", subdivision, 1, 4);
+  check_range("band_subdivision", band_subdivision, 1, 4);
   check_range("band_width", band_width, 0.5, 10.0);
   check_positive("curvature_clamp", curvature_clamp);
+  check_range("sign_guard", sign_guard, 0.0, 10.0);
   check_range("initial_radius_factor", initial_radius_factor, 1.0, 10.0);
+  require(initial_box_margin < tmesh.margin, "initial_box_margin",
+          "must be smaller than tmesh_margin (the initial surface must lie inside the T-mesh's domain), got " +
+              std::to_string(initial_box_margin));
   checked_with_prefix("velocity_", [&] { velocity_plugin().options().check(); });
   checked_with_prefix("solver_", [&] { solver_plugin().options().check(); });
   checked_with_prefix("tmesh_", [&] { tmesh.check(); });

@@ -22,6 +22,7 @@ void FinalRefinementOptions::check() const {
   check_one_of("smoothness", smoothness, {"tikhonov", "first_order"});
   check_positive("outlier_cells", outlier_cells);
   check_range("subdivision", subdivision, 1, 4);
+  check_range("band_subdivision", band_subdivision, 1, 4);
   check_range("band_width", band_width, 0.5, 10.0);
 }
 
@@ -87,6 +88,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   const Balance balance = balance_of(tree);
   ZeroSetSampling sampling;
   sampling.subdivision = options.subdivision;
+  sampling.band_subdivision = options.band_subdivision;
   sampling.band_width = options.band_width;
   sampling.hessians = false;
   for (;;) {

@@ -35,7 +35,8 @@ struct FinalRefinementOptions final : Options {
   double w_smooth = 1e-3;
   std::string smoothness = "tikhonov";
   double outlier_cells = 2.0;
-  int subdivision = 1;
+  int subdivision = 2;
+  int band_subdivision = 2;
   double band_width = 2.0;
 
   void visit(FieldVisitor& v) override {
@@ -51,7 +52,8 @@ struct FinalRefinementOptions final : Options {
     v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (T-mesh graph Laplacian)");
     v.field("outlier_cells", outlier_cells,
             "data points farther than this many leaf sides from the level set are left out of the fit");
-    v.field("subdivision", subdivision, "band samples: centres of s^3 sub-cells per leaf");
+    v.field("subdivision", subdivision, "zero-set samples (which leaves to refine): centres of s^3 sub-cells per leaf");
+    v.field("band_subdivision", band_subdivision, "distance-field band samples: centres of b^3 sub-cells per leaf");
     v.field("band_width", band_width, "distance-field band: |f| / |grad f| < band_width x leaf side");
   }
   void check() const override;

@@ -26,6 +26,7 @@ void register_level_set_solvers() {
   add_eigen_ldlt_solver(level_set_solvers());
   add_eigen_cg_solver(level_set_solvers());
   add_ceres_solver(level_set_solvers());
+  add_cholmod_solver(level_set_solvers());
 }
 
 }  // namespace dtsl

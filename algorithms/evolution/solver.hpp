@@ -44,7 +44,11 @@ class LevelSetSolver {
 
 Registry<LevelSetSolver>& level_set_solvers();
 
-/// Adds `eigen_ldlt`, `eigen_cg` and `ceres` to level_set_solvers(). Idempotent.
+/// Whether the `cholmod` plugin was built (SuiteSparse found through Ceres).
+bool cholmod_available();
+
+/// Adds `eigen_ldlt`, `eigen_cg`, `ceres` and (where SuiteSparse is available) `cholmod` to
+/// level_set_solvers(). Idempotent.
 void register_level_set_solvers();
 
 }  // namespace dtsl

@@ -48,24 +48,33 @@ ZeroSetSamples sample_zero_set(const ImplicitFunction& f, const Octree& tmesh, c
 #endif
     ZeroSetSamples& out = parts[t];
     const int begin = int(long(leaves) * t / threads), end = int(long(leaves) * (t + 1) / threads);
+    const int b = std::max(1, options.band_subdivision);
     for (int l = begin; l < end; ++l) {
       const BoundingBox box = tmesh.leaf_box(l);
-      const double side = tmesh.leaf_side(l), h = side / s;
+      const double side = tmesh.leaf_side(l);
+      // Band candidates.
+      const double hb = side / b;
+      for (int k = 0; k < b * b * b; ++k) {
+        const Vec3 centre = box.min + hb * Vec3(k % b + 0.5, (k / b) % b + 0.5, k / (b * b) + 0.5);
+        Vec3 g;
+        const double v = f.evaluate(centre, &g);
+        const double gn = g.norm();
+        if (!(gn > 0.0) || std::abs(v) >= options.band_width * side * gn) continue;
+        out.band.push_back(centre);
+        out.band_gradient.push_back(g);
+        out.band_cell_size.push_back(side);
+      }
+      // Zero-set candidates.
+      const double h = side / s;
       for (int k = 0; k < s * s * s; ++k) {
         const Vec3 centre = box.min + h * Vec3(k % s + 0.5, (k / s) % s + 0.5, k / (s * s) + 0.5);
         Vec3 g;
         const double v = f.evaluate(centre, &g);
         const double gn = g.norm();
         if (!(gn > 0.0)) continue;
-        const double distance = std::abs(v) / gn;
-        if (distance < options.band_width * side) {
-          out.band.push_back(centre);
-          out.band_gradient.push_back(g);
-          out.band_cell_size.push_back(side);
-        }
         // The surface can cross the sub-cell only if it passes within half its diagonal of the
         // centre (to first order; 1.5x for the curvature of f).
-        if (distance > 1.5 * 0.8660254037844386 * h) continue;
+        if (std::abs(v) > 1.5 * 0.8660254037844386 * h * gn) continue;
         Vec3 x = centre;
         if (!project(f, x, h, 1e-7 * h, options.newton_iterations)) continue;
         if (((x - centre).cwiseAbs().array() > 0.5 * h).any()) continue;  // another cell's point

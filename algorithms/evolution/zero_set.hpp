@@ -2,13 +2,16 @@
 // set, where the velocity rows are written, and points y_m of a band around it, where the
 // distance-field rows keep |grad f| near 1.
 //
-// x_j: the centres of the leaf cells (or of their s^3 sub-cells), each projected onto f = 0 by Newton
-// and kept if its foot point stays in its own (sub-)cell — about one point per cell the surface
-// crosses, so the rows follow the T-mesh's resolution: dense where the data are dense, sparse where
-// the T-mesh is coarse. Nothing about the number of components or the genus is assumed: every leaf
-// is looked at, every step.
-// y_m: the same cell centres where |f| / |grad f| < band_width x (the side of their leaf), plus the
-// x_j. DESIGN.md §1 writes the band as |f| < 2 h_min; on an adaptive T-mesh a band of the finest cell
+// x_j: the centres of the s^3 sub-cells of every leaf cell, each projected onto f = 0 by Newton and
+// kept if its foot point stays in its own sub-cell — about s^2 points per leaf the surface crosses,
+// so the rows follow the T-mesh's resolution: dense where the data are dense, sparse where the T-mesh
+// is coarse. s = 2 by default: with one point per leaf (s = 1) the velocity is prescribed at too few
+// points for the ~s^3-per-leaf freedom of a cubic spline in a cell, and f' develops bumps between them
+// that grow into spurious components (measured: 5-15 extra components on the torus and two-sphere
+// tests at s = 1, none at s = 2). Nothing about the number of components or the genus is assumed:
+// every leaf is looked at, every step.
+// y_m: the centres of the b^3 sub-cells (b = 1: the leaf centres) where |f| / |grad f| < band_width x
+// (the side of their leaf), plus the x_j. DESIGN.md §1 writes the band as |f| < 2 h_min; on an adaptive T-mesh a band of the finest cell
 // size would hold no cell centre at all where the T-mesh is coarse, so the band is measured in the
 // local cell size (ours).
 #pragma once
@@ -20,7 +23,8 @@
 namespace dtsl {
 
 struct ZeroSetSampling {
-  int subdivision = 1;       ///< s: candidates are the centres of s^3 sub-cells of every leaf
+  int subdivision = 2;       ///< s: zero-set candidates are the centres of s^3 sub-cells of every leaf
+  int band_subdivision = 2;  ///< band candidates: the centres of b^3 sub-cells of every leaf
   double band_width = 2.0;   ///< band: |f| / |grad f| < band_width x the leaf's side
   int newton_iterations = 8; ///< Newton steps per candidate (a step is capped at the sub-cell side)
   bool hessians = true;      ///< evaluate the Hessian at the x_j (for the curvature)

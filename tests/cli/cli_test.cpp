@@ -76,7 +76,8 @@ TEST_CASE("dtsl help and unknown commands") {
 TEST_CASE("dtsl list names every registered kind and the baselines") {
   const Outcome o = dtsl("list");
   REQUIRE(o.code == 0);
-  for (const char* name : {"pcl_poisson", "pcl_mc_hoppe", "pcl_mc_rbf", "pcl_gp3", "pcl_grid", "sphere", "noise"})
+  for (const char* name : {"pcl_poisson", "pcl_mc_hoppe", "pcl_mc_rbf", "pcl_gp3", "pcl_grid", "sphere", "noise",
+                           "marching_triangulation", "marching_cubes", "gaussian"})
     CHECK(contains(o.output, name));
   CHECK(dtsl("list pipeline").code == 0);
   CHECK(dtsl("list nonsense").code == 2);

@@ -5,6 +5,7 @@
 #include "tests/evolution/fixtures.hpp"
 #include "algorithms/evolution/level_set_io.hpp"
 #include "framework/config/yaml_options.hpp"
+#include "tests/evolution/png_writer.hpp"
 
 using namespace dtsl;
 
@@ -17,6 +18,16 @@ TEST_CASE("explore", "[.explore]") {
   if (w == "bunny")
     pts = test::dataset_points("{name: b, shape: {type: cgal_model, model: bunny00}, sampler: vertices, corruptions: [{type: subsample, count: 6000}]}");
   std::cout << pts.size() << " points\n";
+  {
+    std::vector<double> nn;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      double best = 1e9;
+      for (std::size_t j = 0; j < pts.size(); ++j) if (j != i) best = std::min(best, (pts[i] - pts[j]).norm());
+      nn.push_back(best);
+    }
+    std::sort(nn.begin(), nn.end());
+    std::cout << "nn spacing median " << nn[nn.size() / 2] << " p90 " << nn[nn.size() * 9 / 10] << " max " << nn.back() << "\n";
+  }
   EvolutionOptions o = test::test_options(std::getenv("VEL") ? std::getenv("VEL") : "distance_balloon",
                                           std::getenv("SOL") ? std::getenv("SOL") : "eigen_ldlt",
                                           std::getenv("DEPTH") ? std::atoi(std::getenv("DEPTH")) : 4);
@@ -30,10 +41,44 @@ TEST_CASE("explore", "[.explore]") {
   const LevelSetResult r = compute_level_set(pts, o);
   for (const auto& h : r.history)
     std::cout << h.iteration << " t=" << h.seconds << " dt=" << h.time_step << " xs=" << h.surface_points
-              << " band=" << h.band_points << " n=" << h.unknowns << " |v|=" << h.mean_speed << "/" << h.max_speed
-              << " dist=" << h.mean_distance << "/" << h.max_distance << " grad=[" << h.min_gradient << ","
+              << " band=" << h.band_points << " n=" << h.unknowns << " g=" << h.guarded << " vres=" << h.velocity_residual << " |v|=" << h.mean_speed << "/" << h.max_speed
+              << " dist=" << h.mean_distance << "/" << h.max_distance << " sd=" << h.mean_surface_distance << " grad=[" << h.min_gradient << ","
               << h.max_gradient << "]" << (h.solve ? " solve=" + std::to_string(h.solve->seconds) + " it=" + std::to_string(h.solve->iterations) + " " + h.solve->details.dump() : "") << "\n";
   std::cout << r.summary.dump(1) << "\n";
+  // Three slices through the origin (x = 0, y = 0, z = 0), side by side: f < 0 shaded, the zero set
+  // black, data within 0.03 of the slice red.
+  {
+    const int S = std::getenv("S") ? std::atoi(std::getenv("S")) : 300;
+    std::vector<unsigned char> img(3 * S * 3 * S, 255);
+    for (int a = 0; a < 3; ++a) {
+      const int u = (a + 1) % 3, w2 = (a + 2) % 3;
+      std::vector<double> val(S * S);
+      for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+          Vec3 x = Vec3::Zero();
+          x[u] = -1.25 + 2.5 * (i + 0.5) / S;
+          x[w2] = 1.25 - 2.5 * (j + 0.5) / S;
+          val[j * S + i] = r.level_set.evaluate(x);
+        }
+      for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+          unsigned char* px = &img[3 * (j * 3 * S + a * S + i)];
+          const double v = val[j * S + i];
+          const bool edge = (i + 1 < S && (val[j * S + i + 1] < 0) != (v < 0)) || (j + 1 < S && (val[(j + 1) * S + i] < 0) != (v < 0));
+          if (edge) { px[0] = px[1] = px[2] = 0; }
+          else if (v < 0) { px[0] = 170; px[1] = 190; px[2] = 255; }
+          else { const int g = 255 - std::min(60, int(std::abs(v) * 100)); px[0] = px[1] = px[2] = g; }
+        }
+      for (const Vec3& p : pts) {
+        if (std::abs(p[a]) > 0.03) continue;
+        const int i = int((p[u] + 1.25) / 2.5 * S), j = int((1.25 - p[w2]) / 2.5 * S);
+        if (i < 0 || j < 0 || i >= S || j >= S) continue;
+        unsigned char* px = &img[3 * (j * 3 * S + a * S + i)];
+        px[0] = 230; px[1] = 0; px[2] = 0;
+      }
+    }
+    test::write_png(std::getenv("PNG") ? std::getenv("PNG") : "/tmp/evo_scratch/slice.png", 3 * S, S, img);
+  }
   for (const TSpline* f : {&r.evolved, &r.level_set}) {
     const TriangleMesh m = test::zero_set_mesh(*f, pts);
     const MeshStats s = mesh_stats(m);

@@ -12,6 +12,7 @@ namespace dtsl {
 void add_eigen_ldlt_solver(Registry<LevelSetSolver>& registry);
 void add_eigen_cg_solver(Registry<LevelSetSolver>& registry);
 void add_ceres_solver(Registry<LevelSetSolver>& registry);
+void add_cholmod_solver(Registry<LevelSetSolver>& registry);  ///< no-op without SuiteSparse
 
 /// The common shape of a solver plugin: its options and clone().
 template <class OptionsType, class Derived>

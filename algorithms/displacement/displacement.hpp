@@ -1,0 +1,84 @@
+// Phase 2: the displaced mesh M = M_0 + D (paper §3.2, Eq. 1-2; DESIGN.md §3). The data's signed
+// displacements d_k at their foot points q_k (projection.hpp) are Gaussian-filtered onto the vertices,
+// holes get a harmonic fill, and every vertex moves along the implicit normal: v <- v + d(v) n(v),
+// n = grad f / |grad f| (paper: "the normals n are computed from the implicitly defined T-spline surface
+// instead of the discretized mesh"). The curvature check flags displaced triangles that flipped where
+// |d(v)| approaches the smaller principal curvature radius; the pipeline then refines the level set
+// (final refinement, evolution module) and redoes this stage.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "algorithms/displacement/projection.hpp"
+#include "framework/config/options.hpp"
+#include "framework/core/implicit.hpp"
+#include "framework/core/types.hpp"
+#include "framework/registry/registry.hpp"
+
+namespace dtsl {
+
+struct DisplacementOptions final : Options {
+  /// Gaussian filter width (frame units); 0 = the base mesh's mean edge length (~ the marching step
+  /// delta, DESIGN.md §3). Wider smooths noise more and small features more.
+  double sigma = 0.0;
+  /// Foot points farther than this x sigma from a vertex are ignored (the Gaussian is ~1% there at 3).
+  double support = 3.0;
+  /// A vertex with fewer foot points than this within the support is a hole vertex (harmonic fill).
+  int min_points = 1;
+  /// Fill hole vertices harmonically from their neighbours; false leaves them on the base surface (d = 0).
+  bool fill_holes = true;
+  /// Foot points whose normal makes a larger angle than this (degrees) with the vertex normal are
+  /// ignored: on a thin part the other side's data lies within the support but belongs elsewhere.
+  double max_normal_angle_deg = 90.0;
+  /// Curvature check (paper §3.2): a vertex with |d(v)| >= this x its smaller principal curvature radius
+  /// is at risk; the triangles of its one-ring are tested for flips.
+  double curvature_factor = 0.5;
+  /// Only count a radius when the displacement goes towards its centre of curvature (inward on convex,
+  /// outward on concave parts: the paper's "deep convex or concave parts"); moving away from it cannot
+  /// make the normals cross. false: compare |d(v)| with the smaller radius whatever the direction.
+  bool signed_curvature_check = true;
+  /// Test every triangle for flips, not only those around vertices at risk (a diagnostic).
+  bool check_all_faces = false;
+  /// Report e_avr/e_max of the data against the base and displaced meshes (through MeshLocator's
+  /// one-ring search: close to, not exactly, the metrics module's exact distances).
+  bool report_errors = true;
+  ProjectionOptions projection;
+
+  void visit(FieldVisitor& v) override;
+  void check() const override;
+};
+
+struct DisplacementResult {
+  TriangleMesh mesh;                        ///< the displaced mesh, vertex normals from grad f at the base vertex
+  std::vector<double> vertex_displacement;  ///< d(v) per vertex
+  std::vector<int> hole_vertices;           ///< vertices whose d(v) came from the hole fill
+  std::vector<int> at_risk_vertices;        ///< |d(v)| >= curvature_factor x smaller curvature radius
+  std::vector<int> flipped_faces;           ///< faces whose normal reversed (among those tested)
+  std::vector<int> flipped_vertices;        ///< vertices of flipped faces: where to refine the level set
+  bool needs_refinement = false;            ///< a flip happened: refine f (final refinement) and redo
+  ProjectionResult projection;
+  nlohmann::json summary;                   ///< counts, flips, holes, e_avr/e_max before/after, seconds
+};
+
+/// Paper §3.1-3.2 on `base` (the initial mesh M_0 of f = 0). Throws ConfigError for invalid options,
+/// AlgorithmError for no data points, a non-finite point, or an empty / invalid mesh.
+DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& base, const std::vector<Vec3>& points,
+                                 const DisplacementOptions& options = {});
+
+/// The Phase-2 stage as a plugin.
+class Displacer {
+ public:
+  virtual ~Displacer() = default;
+  virtual Options& options() = 0;
+  virtual DisplacementResult displace(const ImplicitFunction& f, const TriangleMesh& base,
+                                      const std::vector<Vec3>& points) = 0;
+};
+
+Registry<Displacer>& displacers();
+/// Adds `gaussian` (the paper's Gaussian-filtered displacement with harmonic hole fill). Idempotent.
+void register_displacers();
+
+}  // namespace dtsl
