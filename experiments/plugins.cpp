@@ -3,6 +3,7 @@
 #include "algorithms/baselines/baselines.hpp"
 #include "algorithms/displacement/displacement.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
+#include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/datasets/dataset.hpp"
 
 namespace dtsl {
@@ -15,6 +16,7 @@ void register_all_plugins() {
   register_baselines();
   register_polygonizers();
   register_displacers();
+  sharpen::register_sharpen_solvers();
 }
 
 }  // namespace dtsl

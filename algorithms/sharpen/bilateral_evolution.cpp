@@ -56,6 +56,10 @@ std::vector<int> flipped_faces(const TriangleMesh& before, const TriangleMesh& a
   for (const int v : moving)
     for (const int f : adj.vertex_faces[v]) {
       const Face& t = before.faces[f];
+      // A face none of whose vertices moves keeps its orientation (even a zero-area one).
+      if (before.vertices[t[0]] == after.vertices[t[0]] && before.vertices[t[1]] == after.vertices[t[1]] &&
+          before.vertices[t[2]] == after.vertices[t[2]])
+        continue;
       const Vec3 n0 = (before.vertices[t[1]] - before.vertices[t[0]]).cross(before.vertices[t[2]] - before.vertices[t[0]]);
       const Vec3 n1 = (after.vertices[t[1]] - after.vertices[t[0]]).cross(after.vertices[t[2]] - after.vertices[t[0]]);
       if (n1.dot(n0) <= 0.0 || n1.dot(original[f]) <= 0.0) out.push_back(f);
@@ -103,8 +107,8 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
   std::size_t frozen = 0;
   std::string stop = "max_iterations";
 
+  SharpVertices sharp;
   for (int it = 0; it < o.max_iterations; ++it) {
-    SharpVertices sharp;
     if (it == 0 || o.redetect) sharp = detect_sharp_vertices(cur, adj, feet, o.sharp);
     if (it == 0) first = sharp;
     sharp_counts.push_back(sharp.vertices.size());
@@ -164,7 +168,7 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
           if (next.vertices[v] != cur.vertices[v]) ++frozen;
           next.vertices[v] = cur.vertices[v];
         }
-      if (pass == 20) {  // cannot happen (reverting everything flips nothing); stay safe
+      if (pass == 20) {  // cannot happen (with every vertex reverted no face changes); stay safe
         next = cur;
         break;
       }

@@ -70,7 +70,20 @@ class CeresSolver final : public SharpenSolver {
         Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>::Zero(p.unknowns, 3);
     ceres::Problem problem;
     for (int i = 0; i < p.unknowns; ++i) problem.AddParameterBlock(x.row(i).data(), 3);
-    for (const auto& r : p.rows) {
+    for (const auto& given : p.rows) {
+      // Ceres refuses a parameter block twice in one residual: merge repeated unknowns.
+      LinearRow r = given;
+      r.count = 0;
+      for (int j = 0; j < given.count; ++j) {
+        int at = 0;
+        while (at < r.count && r.unknowns[at] != given.unknowns[j]) ++at;
+        if (at == r.count) {
+          r.unknowns[at] = given.unknowns[j];
+          r.coeffs[at] = 0.0;
+          ++r.count;
+        }
+        r.coeffs[at] += given.coeffs[j];
+      }
       if (r.count == 0) continue;
       std::vector<double*> blocks;
       for (int j = 0; j < r.count; ++j) blocks.push_back(x.row(r.unknowns[j]).data());

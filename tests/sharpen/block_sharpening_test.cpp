@@ -93,8 +93,10 @@ TEST_CASE("block: no triangle flips and the mesh stays watertight with genus 1",
   std::size_t flipped = 0, checked = 0;
   for (std::size_t f = 0; f < r.result.mesh.faces.size(); ++f) {
     const int g = r.result.face_origin[f];
-    REQUIRE(g >= 0);
-    REQUIRE(g < static_cast<int>(r.start.faces.size()));
+    if (g < 0 || g >= static_cast<int>(r.start.faces.size())) {
+      ++flipped;  // counted as a failure: every output face must come from an input face
+      continue;
+    }
     const Face& t = r.result.mesh.faces[f];
     const Face& t0 = r.start.faces[g];
     const auto& V = r.result.mesh.vertices;
