@@ -2,6 +2,7 @@
 
 #include "algorithms/baselines/baselines.hpp"
 #include "algorithms/displacement/displacement.hpp"
+#include "algorithms/method/dtsl_pipeline.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/datasets/dataset.hpp"
@@ -17,6 +18,7 @@ void register_all_plugins() {
   register_polygonizers();
   register_displacers();
   sharpen::register_sharpen_solvers();
+  register_dtsl_pipeline();
 }
 
 }  // namespace dtsl

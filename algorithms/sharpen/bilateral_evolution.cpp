@@ -6,7 +6,7 @@
 #include "algorithms/sharpen/bilateral_target.hpp"
 #include "algorithms/sharpen/foot_points.hpp"
 #include "algorithms/sharpen/mesh_adjacency.hpp"
-#include "algorithms/sharpen/prefixed_visitor.hpp"
+#include "framework/config/prefixed_visitor.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -25,9 +25,9 @@ void BilateralEvolutionOptions::visit(FieldVisitor& v) {
   v.field("redetect", redetect, "detect sharp vertices again on each iteration's mesh (else once)");
   v.field("snap", snap, "barycentric coordinates below this count as zero (foot-point cases of Fig. 2)");
   v.field("solver", solver, "linear least-squares solver plugin: eigen_ldlt or ceres");
-  PrefixedVisitor s(v, "sharp.");
+  PrefixedVisitor s(v, "sharp_");
   sharp.visit(s);
-  PrefixedVisitor d(v, "degenerate.");
+  PrefixedVisitor d(v, "degenerate_");
   degenerate.visit(d);
 }
 
@@ -41,8 +41,8 @@ void BilateralEvolutionOptions::check() const {
   check_range("min_relative_decrease", min_relative_decrease, 0.0, 1.0);
   check_range("snap", snap, 0.0, 0.1);
   check_one_of("solver", solver, {"eigen_ldlt", "ceres"});
-  checked_with_prefix("sharp.", [&] { sharp.check(); });
-  checked_with_prefix("degenerate.", [&] { degenerate.check(); });
+  checked_with_prefix("sharp_", [&] { sharp.check(); });
+  checked_with_prefix("degenerate_", [&] { degenerate.check(); });
 }
 
 namespace {

@@ -137,11 +137,11 @@ TEST_CASE("options: check() names the broken field, visit() lists every field wi
   CHECK_THROWS_WITH(broken([](auto& o) { o.solver = "cholmod"; }).check(), Catch::StartsWith("solver"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.max_iterations = -1; }).check(), Catch::StartsWith("max_iterations"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.sharp.error_ratio = -1.0; }).check(),
-                    Catch::StartsWith("sharp.error_ratio"));
+                    Catch::StartsWith("sharp_error_ratio"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.sharp.dihedral_angle_deg = 200.0; }).check(),
-                    Catch::StartsWith("sharp.dihedral_angle_deg"));
+                    Catch::StartsWith("sharp_dihedral_angle_deg"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.degenerate.min_edge_ratio = 2.0; }).check(),
-                    Catch::StartsWith("degenerate.min_edge_ratio"));
+                    Catch::StartsWith("degenerate_min_edge_ratio"));
   CHECK_THROWS_AS(bilateral_evolution(TriangleMesh{}, {}, broken([](auto& o) { o.delta = -1.0; })), ConfigError);
 
   struct Lister final : FieldVisitor {
@@ -160,7 +160,7 @@ TEST_CASE("options: check() names the broken field, visit() lists every field wi
   BilateralEvolutionOptions o;
   o.visit(lister);
   CHECK(lister.all_documented);
-  CHECK(std::find(lister.names.begin(), lister.names.end(), "sharp.normal_variation_deg") != lister.names.end());
-  CHECK(std::find(lister.names.begin(), lister.names.end(), "degenerate.max_passes") != lister.names.end());
+  CHECK(std::find(lister.names.begin(), lister.names.end(), "sharp_normal_variation_deg") != lister.names.end());
+  CHECK(std::find(lister.names.begin(), lister.names.end(), "degenerate_max_passes") != lister.names.end());
   CHECK(lister.names.size() == 10 + 5 + 3);
 }

@@ -26,6 +26,7 @@ struct CeresSolverOptions final : Options {
   double tolerance = 1e-6;
   int max_iterations = 10;
   int threads = 0;
+  bool dynamic_sparsity = true;
 
   void visit(FieldVisitor& v) override {
     v.field("linear_solver", linear_solver, "'sparse_normal_cholesky' or 'cgnr'");
@@ -36,6 +37,9 @@ struct CeresSolverOptions final : Options {
             "uses it as its own tolerance)");
     v.field("max_iterations", max_iterations, "Ceres trust-region iteration cap (a linear problem needs 1-2)");
     v.field("threads", threads, "Ceres threads; 0 = the hardware concurrency");
+    v.field("dynamic_sparsity", dynamic_sparsity,
+            "Ceres' dynamic-sparsity path for sparse_normal_cholesky (the factorisation works on the "
+            "Jacobian directly; measured ~10x faster here than the block-sparse J^T J of 1x1 blocks)");
   }
   void check() const override {
     check_one_of("linear_solver", linear_solver, {"sparse_normal_cholesky", "cgnr"});
@@ -96,6 +100,7 @@ class CeresSolver final : public SolverWith<CeresSolverOptions, CeresSolver> {
     o.linear_solver_type = options_.linear_solver == "cgnr" ? ceres::CGNR : ceres::SPARSE_NORMAL_CHOLESKY;
     o.sparse_linear_algebra_library_type =
         options_.sparse_library == "eigen_sparse" ? ceres::EIGEN_SPARSE : ceres::SUITE_SPARSE;
+    o.dynamic_sparsity = options_.dynamic_sparsity;
     o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
     o.initial_trust_region_radius = 1e16;  // LM damping 1e-16: the first step is Gauss-Newton
     o.max_trust_region_radius = 1e32;
@@ -119,7 +124,11 @@ class CeresSolver final : public SolverWith<CeresSolverOptions, CeresSolver> {
                       {"termination", ceres::TerminationTypeToString(summary.termination_type)},
                       {"initial_cost", summary.initial_cost},
                       {"final_cost", summary.final_cost},
-                      {"linear_solver", options_.linear_solver}};
+                      {"linear_solver", options_.linear_solver},
+                      {"preprocessor_seconds", summary.preprocessor_time_in_seconds},
+                      {"jacobian_seconds", summary.jacobian_evaluation_time_in_seconds},
+                      {"linear_solver_seconds", summary.linear_solver_time_in_seconds},
+                      {"minimizer_seconds", summary.minimizer_time_in_seconds}};
     if (!summary.IsSolutionUsable() || !solution.allFinite())
       solver_failed("ceres", "solve failed (" + summary.message + ")", report.relative_residual, options_.tolerance);
     if (!(report.relative_residual <= options_.tolerance))

@@ -1,5 +1,5 @@
-// Nested options under a name prefix ("sharp.", "degenerate."), as the evolution stage does for its
-// plugins: one flat list of fields for YAML, --set and `dtsl list`.
+// Nested options under a name prefix ("sharp_", "evolution_"): a stage that embeds another stage's options
+// visits them under a prefix, so YAML, --set and `dtsl list` see one flat list of fields.
 #pragma once
 
 #include <deque>
@@ -9,7 +9,7 @@
 #include "framework/config/options.hpp"
 #include "framework/core/error.hpp"
 
-namespace dtsl::sharpen {
+namespace dtsl {
 
 /// Forwards every field to `inner` under `prefix` + name (the names live as long as the visitor).
 class PrefixedVisitor final : public FieldVisitor {
@@ -41,4 +41,4 @@ void checked_with_prefix(const std::string& prefix, Check&& check) {
   }
 }
 
-}  // namespace dtsl::sharpen
+}  // namespace dtsl
