@@ -175,6 +175,25 @@ LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smo
   s.column = std::move(column_);
   for (int& c : s.column) c = unknown_of[c];
   s.value = std::move(value_);
+  // Columns ascending within each row (normal_equations() then visits only the lower triangle).
+  {
+    const int rows = int(s.row_begin.size()) - 1;
+#pragma omp parallel
+    {
+      std::vector<std::pair<int, double>> entries;
+#pragma omp for schedule(dynamic, 256)
+      for (int r = 0; r < rows; ++r) {
+        const int begin = s.row_begin[r], end = s.row_begin[r + 1];
+        entries.clear();
+        for (int e = begin; e < end; ++e) entries.emplace_back(s.column[e], s.value[e]);
+        std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (int e = begin; e < end; ++e) {
+          s.column[e] = entries[e - begin].first;
+          s.value[e] = entries[e - begin].second;
+        }
+      }
+    }
+  }
   s.rhs = std::move(rhs_);
   s.weight = std::move(weight_);
   s.value_rows = value_rows_;

@@ -45,7 +45,7 @@ const char* to_string(Smoothness s);
 std::vector<std::array<int, 2>> control_edges(const TSplineBasis& basis);
 
 /// minimise sum_r weight_r (a_r . u - rhs_r)^2 over the unknowns u. Rows in compressed sparse row
-/// form, columns in [0, unknowns).
+/// form, columns in [0, unknowns), ascending within each row (LeastSquaresBuilder::finish sorts them).
 struct LeastSquaresSystem {
   int unknowns = 0;
   std::vector<int> control;        ///< unknown -> control point index of the basis

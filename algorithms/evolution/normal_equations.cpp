@@ -37,9 +37,9 @@ NormalEquations normal_equations(const LeastSquaresSystem& s) {
         const int r = col_row[k];
         const double wa = s.weight[r] * s.value[col_entry[k]];
         rhs += wa * s.rhs[r];
-        for (int e = s.row_begin[r]; e < s.row_begin[r + 1]; ++e) {
+        // Columns ascend within a row: the entries from j's own on are the lower triangle.
+        for (int e = col_entry[k]; e < s.row_begin[r + 1]; ++e) {
           const int i = s.column[e];
-          if (i < j) continue;  // lower triangle
           if (marker[i] != j) {
             marker[i] = j;
             accumulator[i] = 0.0;
