@@ -37,7 +37,7 @@ namespace dtsl {
 /// YAML map configures the stage. A value type: copies clone the plugins.
 struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
-  std::string solver = "eigen_ldlt";
+  std::string solver = "eigen_cg";
   double w_distance = 1.0;
   double w_smooth = 1e-3;
   std::string smoothness = "tikhonov";
@@ -47,7 +47,7 @@ struct EvolutionOptions final : Options {
   int max_iterations = 200;
   double velocity_tolerance = 1e-3;
   double distance_tolerance = 1e-3;
-  int patience = 3;
+  int patience = 2;
   int subdivision = 2;
   int band_subdivision = 2;
   double band_width = 2.0;

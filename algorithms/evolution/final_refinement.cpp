@@ -7,6 +7,7 @@
 
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/sign_guard.hpp"
 #include "algorithms/evolution/zero_set.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -24,6 +25,7 @@ void FinalRefinementOptions::check() const {
   check_range("subdivision", subdivision, 1, 4);
   check_range("band_subdivision", band_subdivision, 1, 4);
   check_range("band_width", band_width, 0.5, 10.0);
+  check_range("sign_guard", sign_guard, 0.0, 10.0);
 }
 
 nlohmann::json to_json(const RefinementReport& r) {
@@ -35,6 +37,7 @@ nlohmann::json to_json(const RefinementReport& r) {
           {"control_points_after", r.control_points_after},
           {"target_level", r.target_level},
           {"fitted_points", r.fitted_points},
+          {"guarded", r.guarded},
           {"mean_distance_before", r.before.mean},
           {"max_distance_before", r.before.max},
           {"mean_distance_after", r.after.mean},
@@ -121,6 +124,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   std::vector<std::array<int, 2>> edges;
   if (smoothness == Smoothness::first_order && options.w_smooth > 0.0) edges = control_edges(*basis);
   const Octree& mesh = basis->octree();
+  const std::vector<double> floors = options.sign_guard > 0.0 ? sign_floors(*basis, options.sign_guard) : std::vector<double>();
   for (int it = 0; it < options.fit_iterations; ++it) {
     LeastSquaresBuilder rows(*basis);
     // Data rows: f(p_k) + sum_i R_i(p_k) delta_i = 0, for the points near the level set.
@@ -153,7 +157,10 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
     report.solves.push_back(solver.solve(system, delta));
     std::vector<double>& coefficients = f.coefficients();
+    const std::vector<double> before = coefficients;
     for (int k = 0; k < system.unknowns; ++k) coefficients[system.control[k]] += delta[k];
+    // No nucleation away from the data (sign_guard.hpp): the data rows mark the surface.
+    if (options.sign_guard > 0.0) report.guarded += guard_signs(system, system.value_rows, floors, before, coefficients);
   }
   report.after = data_fit(f, points);
   report.seconds = clock.seconds();

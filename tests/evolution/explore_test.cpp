@@ -13,6 +13,8 @@ TEST_CASE("explore", "[.explore]") {
   const char* which = std::getenv("EXPLORE");
   std::string w = which ? which : "sphere";
   std::vector<Vec3> pts = w == "torus" ? test::torus_data() : w == "two" ? test::two_spheres_data() : test::sphere_data();
+  if (w == "two15")
+    pts = test::dataset_points("{name: two, shape: {type: two_spheres, gap: 1.5}, sampler: {type: area, count: 2000}}");
   if (w == "fandisk")
     pts = test::dataset_points("{name: f, shape: {type: cgal_model, model: fandisk}, sampler: vertices, corruptions: [{type: plane_cut, normal: [0,0,1], offset: 0.75}]}");
   if (w == "bunny")

@@ -42,7 +42,7 @@ inline const std::vector<Vec3>& torus_data() {
 /// Two separate spheres along x.
 inline const std::vector<Vec3>& two_spheres_data() {
   static const std::vector<Vec3> p =
-      dataset_points("{name: two, shape: {type: two_spheres}, sampler: {type: area, count: 2000}}");
+      dataset_points("{name: two, shape: {type: two_spheres, gap: 1.0}, sampler: {type: area, count: 2000}}");
   return p;
 }
 

@@ -19,7 +19,7 @@ struct EigenCgOptions final : Options {
   double tolerance = 1e-6;
   int max_iterations = 2000;
   std::string preconditioner = "jacobi";
-  std::string on_failure = "error";
+  std::string on_failure = "eigen_ldlt";
 
   void visit(FieldVisitor& v) override {
     v.field("tolerance", tolerance,
