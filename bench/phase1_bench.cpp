@@ -48,7 +48,7 @@ std::vector<Vec3> dataset(const std::string& name) {
 /// The least-squares system of the first evolution step, for timing the solvers alone.
 LeastSquaresSystem first_step_system(const std::vector<Vec3>& points, const EvolutionOptions& o) {
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, o.tmesh));
-  const TSpline f = initial_level_set(basis, enclosing_surface(points, o.initial_radius_factor, o.initial_box_margin));
+  const TSpline f = initial_level_set(basis, points, o.initial_radius_factor, o.initial_box_margin);
   ZeroSetSampling sampling;
   sampling.subdivision = o.subdivision;
   sampling.band_subdivision = o.band_subdivision;

@@ -101,6 +101,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   std::vector<double> best = f.coefficients();
   std::vector<double> last_update(basis.size(), 0.0);
   double best_distance = std::numeric_limits<double>::infinity(), reference = best_distance;
+  double previous_progress = 0.0;
   int best_iteration = 0, stalled = 0;
   std::vector<IterationRecord> history;
   std::string stop_reason;
@@ -159,8 +160,12 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       best = f.coefficients();
       best_iteration = it;
     }
-    if (progress < reference * (1.0 - options.distance_tolerance)) {
-      reference = progress;
+    // Stalling is judged on the mean of the last two values: `geodesic` jitters with period two about
+    // the data (DESIGN.md §1) while a membrane elsewhere may still be moving (a torus hole opening).
+    const double smoothed = 0.5 * (progress + (it > 0 ? previous_progress : progress));
+    previous_progress = progress;
+    if (smoothed < reference * (1.0 - options.distance_tolerance)) {
+      reference = smoothed;
       stalled = 0;
     } else {
       ++stalled;
@@ -275,7 +280,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
   Stopwatch clock;
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
-  const TSpline initial = initial_level_set(basis, enclosing_surface(points, options.initial_radius_factor, options.initial_box_margin));
+  const TSpline initial = initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
   LevelSetResult result = evolve_level_set(initial, points, options);
   result.summary["tmesh_seconds"] = tmesh_seconds;
   result.summary["seconds"] = clock.seconds();

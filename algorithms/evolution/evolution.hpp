@@ -1,8 +1,9 @@
 // Phase 1 of the paper (§2.1, its ref. [55]; DESIGN.md §1): the T-spline level set that captures the
 // topology and outline of the data by itself.
 //
-//   T-mesh from the points (octree, algorithms/tspline) -> f_0 = distance to an enclosing sphere ->
-//   evolution df/dt + v |grad f| = 0 with the distance-field constraint -> final refinement.
+//   T-mesh from the points (octree, algorithms/tspline) -> f_0 = distance to the enclosing sphere
+//   (clipped to the data's box, initial_level_set.hpp) -> evolution df/dt + v |grad f| = 0 with the
+//   distance-field constraint -> final refinement (final_refinement.hpp).
 //
 // Each step finds the coefficient derivatives c' by least squares (least_squares_rows.hpp)
 //
@@ -11,10 +12,18 @@
 //         + w_S c'^T R c' / n
 //
 // (x_j on the zero set, y_m in a band around it: zero_set.hpp), solved by a LevelSetSolver plugin,
-// then takes the explicit Euler step c <- c + dt c' with a CFL step dt. The distance-field term is the
-// linearisation of |grad (f + dt f')| = 1 and replaces re-initialisation ([55]). Topology changes
-// happen by themselves: the zero set is re-sampled over the whole T-mesh every step and nothing
-// assumes a genus or a number of components.
+// then takes the explicit Euler step c <- c + dt c' with a CFL step dt, guarded against zero crossings
+// appearing away from the front (sign_guard.hpp). The distance-field term is the linearisation of
+// |grad (f + dt f')| = 1 and replaces re-initialisation ([55]). Topology changes happen by themselves:
+// the zero set is re-sampled over the whole T-mesh every step and nothing assumes a genus or a number
+// of components.
+//
+// Stopping (DESIGN.md §1, made two-sided, ours): the progress measure is the mean data-to-level-set
+// distance |f(p)| / |grad f(p)| plus the mean level-set-to-data distance d(x_j); the evolution stops
+// when mean |v| falls below velocity_tolerance ("at rest"), when that measure (averaged over the last
+// two steps: `geodesic` jitters with period two) has not fallen by distance_tolerance for `patience`
+// steps ("distance stalled"), at max_iterations ("iteration cap"), or when the zero set has vanished
+// ("level set vanished": data with no volume). The iterate kept is the one with the smallest measure.
 #pragma once
 
 #include <memory>
@@ -47,7 +56,7 @@ struct EvolutionOptions final : Options {
   int max_iterations = 200;
   double velocity_tolerance = 1e-3;
   double distance_tolerance = 1e-3;
-  int patience = 2;
+  int patience = 3;
   int subdivision = 2;
   int band_subdivision = 2;
   double band_width = 2.0;

@@ -109,8 +109,12 @@ const LevelSetSolver& EvolutionOptions::solver_plugin() const {
 
 void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("velocity", velocity, "normal velocity plugin: distance, geodesic or distance_balloon (its options: velocity_*)");
-  v.field("solver", solver, "least-squares solver plugin: eigen_ldlt, eigen_cg or ceres (its options: solver_*)");
-  v.field("w_distance", w_distance, "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (DESIGN.md: 1)");
+  v.field("solver", solver,
+          "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (its options: solver_*); "
+          "default eigen_cg: warm-started from the last c' it was the fastest in bench/phase1_bench.cpp");
+  v.field("w_distance", w_distance,
+          "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (DESIGN.md: 1; 0.1 fits the data ~2x "
+          "closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus: measured)");
   v.field("w_smooth", w_smooth, "weight w_S of the smoothness term c'^T R c' (DESIGN.md: 1e-3)");
   v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (graph Laplacian of the T-mesh edges)");
   v.field("cfl", cfl, "CFL factor: a step moves the zero set by at most cfl x the cell size (DESIGN.md: 0.5)");

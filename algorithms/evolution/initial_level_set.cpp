@@ -1,6 +1,7 @@
 #include "algorithms/evolution/initial_level_set.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "framework/core/error.hpp"
 
@@ -9,14 +10,15 @@ namespace dtsl {
 double EnclosingSurface::operator()(const Vec3& x) const {
   const double sphere = (x - centre).norm() - radius;
   if (!clipped) return sphere;
-  // Signed distance to the box: outside, the distance to it; inside, minus the distance to its faces.
-  const Vec3 half = 0.5 * box.extent();
-  const Vec3 q = (x - box.center()).cwiseAbs() - half;
-  const double box_distance = q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+  // Signed distance to the rounded box: the box shrunk by the rounding radius, offset by it.
+  const Vec3 inner = (0.5 * box.extent() - Vec3::Constant(rounding)).cwiseMax(0.0);
+  const Vec3 q = (x - box.center()).cwiseAbs() - inner;
+  const double box_distance = q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - rounding;
   return std::max(sphere, box_distance);
 }
 
-EnclosingSurface enclosing_surface(const std::vector<Vec3>& points, double radius_factor, double box_margin) {
+EnclosingSurface enclosing_surface(const std::vector<Vec3>& points, double radius_factor, double box_margin,
+                                   double min_half_extent, double box_rounding) {
   if (points.empty()) throw AlgorithmError("initial level set: no data points");
   if (!(radius_factor >= 1.0))
     throw AlgorithmError("initial level set: radius factor must be >= 1 to enclose the data");
@@ -30,12 +32,36 @@ EnclosingSurface enclosing_surface(const std::vector<Vec3>& points, double radiu
     s.clipped = true;
     s.box.min = box.min - Vec3::Constant(box_margin);
     s.box.max = box.max + Vec3::Constant(box_margin);
+    for (int a = 0; a < 3; ++a) {
+      const double half = std::max(0.5 * (s.box.max[a] - s.box.min[a]), min_half_extent);
+      s.box.min[a] = s.centre[a] - half;
+      s.box.max[a] = s.centre[a] + half;
+    }
+    s.rounding = box_rounding >= 0.0 ? box_rounding : box_margin;
   }
   return s;
 }
 
 TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const EnclosingSurface& surface) {
   return quasi_interpolant(std::move(basis), [&surface](const Vec3& x) { return surface(x); });
+}
+
+TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
+                          double radius_factor, double box_margin) {
+  double coarsest = 0.0, finest = std::numeric_limits<double>::infinity();
+  const Octree& tree = basis->octree();
+  for (int l = 0; l < tree.leaf_count(); ++l) {
+    coarsest = std::max(coarsest, tree.leaf_side(l));
+    finest = std::min(finest, tree.leaf_side(l));
+  }
+  const EnclosingSurface surface = enclosing_surface(points, radius_factor, box_margin, coarsest);
+  TSpline f = initial_level_set(std::move(basis), surface);
+  double highest = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : points) highest = std::max(highest, f.evaluate(p));
+  const double lower = highest + 0.25 * finest;
+  if (lower > 0.0)
+    for (double& c : f.coefficients()) c -= lower;
+  return f;
 }
 
 }  // namespace dtsl

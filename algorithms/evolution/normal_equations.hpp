@@ -18,6 +18,7 @@ struct NormalEquations {
 
 /// Column by column with a dense accumulator (OpenMP-parallel over columns): the work is
 /// sum over rows of (entries per row)^2 / 2, with no triplet list and no sort of the whole matrix.
+/// Relies on the columns ascending within each row (as LeastSquaresBuilder::finish leaves them).
 NormalEquations normal_equations(const LeastSquaresSystem& system);
 
 }  // namespace dtsl

@@ -14,7 +14,9 @@ TEST_CASE("explore", "[.explore]") {
   std::string w = which ? which : "sphere";
   std::vector<Vec3> pts = w == "torus" ? test::torus_data() : w == "two" ? test::two_spheres_data() : test::sphere_data();
   if (w == "two15")
-    pts = test::dataset_points("{name: two, shape: {type: two_spheres, gap: 1.5}, sampler: {type: area, count: 2000}}");
+    pts = test::dataset_points("{name: two, shape: {type: two_spheres, gap: 2.0}, sampler: {type: area, count: 2000}}");
+  if (w == "plane") { pts.clear(); for (int i = 0; i < 30; ++i) for (int j = 0; j < 30; ++j) pts.emplace_back(-0.9 + 1.8 * i / 29.0, -0.9 + 1.8 * j / 29.0, 0.0); }
+  if (w == "line") { pts.clear(); for (int i = 0; i < 400; ++i) pts.emplace_back(-1.0 + 2.0 * i / 399.0, 0.0, 0.0); }
   if (w == "fandisk")
     pts = test::dataset_points("{name: f, shape: {type: cgal_model, model: fandisk}, sampler: vertices, corruptions: [{type: plane_cut, normal: [0,0,1], offset: 0.75}]}");
   if (w == "bunny")
@@ -90,4 +92,29 @@ TEST_CASE("explore", "[.explore]") {
               << " newton mean " << nd.mean << " max " << nd.max << " failed " << nd.failed << " grad [" << gr.first
               << ", " << gr.second << "]\n";
   }
+}
+TEST_CASE("explore cube", "[.explore2]") {
+  std::vector<Vec3> points;
+  for (int a = 0; a < 3; ++a)
+    for (int side = -1; side <= 1; side += 2)
+      for (int i = 0; i <= 20; ++i)
+        for (int j = 0; j <= 20; ++j) {
+          Vec3 p;
+          p[a] = side;
+          p[(a + 1) % 3] = -1.0 + 0.1 * i;
+          p[(a + 2) % 3] = -1.0 + 0.1 * j;
+          points.push_back(p);
+        }
+  EvolutionOptions o = test::test_options("distance", "eigen_cg");
+  auto basis = std::make_shared<TSplineBasis>(build_octree(points, o.tmesh));
+  const TSpline f = initial_level_set(basis, points, 1.1, 0.1);
+  double hi = -1e9;
+  for (const Vec3& p : points) hi = std::max(hi, f.evaluate(p));
+  std::cout << "max f(p) " << hi << " finest level " << basis->octree().finest_leaf_level() << "\n";
+  for (const Vec3& x : {Vec3(1.25, 0, 0), Vec3(1.25, 1.25, 0), Vec3(1.25, 1.25, 1.25), Vec3(1.2, 1.2, 1.2), Vec3(1.1, 1.1, 1.1), Vec3(1.0,1.0,1.0)})
+    std::cout << x.transpose() << " f " << f.evaluate(x) << "\n";
+  const auto r = marching_cubes(f, points, [] { MarchingCubesOptions m; m.step = 0.05; m.region = "domain"; m.drop_dataless_components = false; return m; }());
+  std::cout << r.summary.details.dump() << " open " << r.summary.open_boundaries << "\n";
+  const MeshStats s = mesh_stats(r.mesh);
+  std::cout << "boundary edges " << s.boundary_edges << " nonmanifold " << s.nonmanifold_edges << " " << s.nonmanifold_vertices << " comps " << s.components << "\n";
 }

@@ -12,6 +12,9 @@
 #include <vector>
 
 #include "algorithms/evolution/evolution.hpp"
+#include "algorithms/evolution/initial_level_set.hpp"
+#include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/zero_set.hpp"
 #include "algorithms/polygonize/marching_cubes.hpp"
 #include "algorithms/polygonize/newton_projection.hpp"
 #include "framework/datasets/dataset.hpp"
@@ -42,7 +45,7 @@ inline const std::vector<Vec3>& torus_data() {
 /// Two separate spheres along x.
 inline const std::vector<Vec3>& two_spheres_data() {
   static const std::vector<Vec3> p =
-      dataset_points("{name: two, shape: {type: two_spheres, gap: 1.0}, sampler: {type: area, count: 2000}}");
+      dataset_points("{name: two, shape: {type: two_spheres, gap: 2.0}, sampler: {type: area, count: 2000}}");
   return p;
 }
 
@@ -56,12 +59,42 @@ inline EvolutionOptions test_options(const std::string& velocity, const std::str
   return o;
 }
 
+/// The least-squares system of one evolution step from the initial surface (velocity rows with a
+/// prescribed inward speed, the distance-field band, the chosen smoothness): a realistic system for
+/// comparing solvers.
+inline LeastSquaresSystem step_system(const std::vector<Vec3>& points, const EvolutionOptions& o,
+                                      Smoothness smoothness = Smoothness::tikhonov) {
+  auto basis = std::make_shared<TSplineBasis>(build_octree(points, o.tmesh));
+  const TSpline f = initial_level_set(basis, points, o.initial_radius_factor, o.initial_box_margin);
+  ZeroSetSampling sampling;
+  const ZeroSetSamples s = sample_zero_set(f, basis->octree(), sampling);
+  LeastSquaresBuilder rows(*basis);
+  std::vector<Vec3> x;
+  std::vector<double> target;
+  for (const SurfacePoint& p : s.surface) {
+    x.push_back(p.position);
+    target.push_back((0.1 + 0.05 * std::sin(7 * p.position.x())) * p.gradient.norm());
+  }
+  rows.add_value_rows(x, target, 1.0);
+  std::vector<Vec3> direction;
+  std::vector<double> rhs;
+  for (std::size_t m = 0; m < s.band.size(); ++m) {
+    direction.push_back(2.0 * 0.3 * s.band_gradient[m]);
+    rhs.push_back(1.0 - s.band_gradient[m].squaredNorm());
+  }
+  rows.add_gradient_rows(s.band, direction, rhs, o.w_distance);
+  static std::vector<std::array<int, 2>> edges;
+  edges = control_edges(*basis);
+  return rows.finish(smoothness, o.w_smooth, &edges);
+}
+
 /// The zero set as a triangle mesh (marching tetrahedra on a grid over the data's box), for genus and
 /// component counts.
-inline TriangleMesh zero_set_mesh(const ImplicitFunction& f, const std::vector<Vec3>& data, double step = 0.04) {
+inline TriangleMesh zero_set_mesh(const ImplicitFunction& f, const std::vector<Vec3>& data, double step = 0.04,
+                                  const std::string& region = "data") {
   MarchingCubesOptions o;
   o.step = step;
-  o.region = "data";
+  o.region = region;
   o.margin = 0.2;
   o.drop_dataless_components = false;  // every component counts: a stray one is a failure to see
   return marching_cubes(f, data, o).mesh;

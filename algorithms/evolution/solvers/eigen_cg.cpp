@@ -1,9 +1,9 @@
 // `eigen_cg`: conjugate gradients on the normal equations, warm-started from the caller's guess (the
 // evolution passes the previous step's c', DESIGN.md §1), with a Jacobi or incomplete-Cholesky
-// preconditioner. CG that misses its tolerance within max_iterations either throws (on_failure =
-// error: an AlgorithmError naming eigen_cg and the residual) or, documented and tested, falls back
-// to the direct eigen_ldlt factorisation of the same normal equations (on_failure = eigen_ldlt),
-// recorded in the report (fell_back, solver = "eigen_ldlt").
+// preconditioner. CG that misses its tolerance within max_iterations either falls back, documented
+// and tested, to the direct eigen_ldlt factorisation of the same normal equations (on_failure =
+// eigen_ldlt, the default; the report says fell_back, solver = "eigen_ldlt"), or throws (on_failure =
+// error: an AlgorithmError naming eigen_cg and the residual).
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 

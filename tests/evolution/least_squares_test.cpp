@@ -1,0 +1,113 @@
+// The least-squares rows and their normal equations (least_squares_rows.hpp, normal_equations.hpp).
+#include <catch2/catch.hpp>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/normal_equations.hpp"
+#include "framework/core/error.hpp"
+#include "tests/evolution/fixtures.hpp"
+
+using namespace dtsl;
+
+namespace {
+
+Eigen::MatrixXd dense_rows(const LeastSquaresSystem& s) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(s.rows(), s.unknowns);
+  for (int r = 0; r < s.rows(); ++r)
+    for (int e = s.row_begin[r]; e < s.row_begin[r + 1]; ++e) A(r, s.column[e]) += s.value[e];
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("least squares: value and gradient rows are f' and its directional derivative", "[evolution][rows]") {
+  auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> c(basis->size());
+  for (double& x : c) x = u(rng);
+  std::vector<Vec3> x;
+  for (int k = 0; k < 40; ++k) x.emplace_back(u(rng), u(rng), u(rng));
+  std::vector<Vec3> direction(x.size(), Vec3(0.3, -0.2, 0.9));
+  LeastSquaresBuilder rows(*basis);
+  rows.add_value_rows(x, std::vector<double>(x.size(), 0.0), 2.0);
+  rows.add_gradient_rows(x, direction, std::vector<double>(x.size(), 0.0), 4.0);
+  const LeastSquaresSystem s = rows.finish(Smoothness::tikhonov, 0.0);
+  REQUIRE(s.rows() == 80);
+  CHECK(s.value_rows == 40);
+  CHECK(s.gradient_rows == 40);
+  CHECK(s.smoothness_rows == 0);
+  const Eigen::VectorXd cu = s.restrict(c);
+  for (int k = 0; k < 40; ++k) {
+    double value = 0, derivative = 0;
+    for (int e = s.row_begin[k]; e < s.row_begin[k + 1]; ++e) value += s.value[e] * cu[s.column[e]];
+    for (int e = s.row_begin[40 + k]; e < s.row_begin[41 + k]; ++e) derivative += s.value[e] * cu[s.column[e]];
+    Vec3 g;
+    CHECK(value == Approx(basis->evaluate(c.data(), x[k], &g)).margin(1e-12));
+    CHECK(derivative == Approx(direction[k].dot(g)).margin(1e-10));
+    for (int e = s.row_begin[k] + 1; e < s.row_begin[k + 1]; ++e) CHECK(s.column[e - 1] < s.column[e]);
+  }
+  // Weights: each kind's total weight spread evenly over its rows.
+  CHECK(s.weight[0] == Approx(2.0 / 40));
+  CHECK(s.weight[40] == Approx(4.0 / 40));
+  // Unknowns are exactly the control points some row touches.
+  std::vector<char> touched(basis->size(), 0);
+  ActiveBasis active;
+  for (const Vec3& p : x) {
+    basis->active(p, active);
+    for (int i : active.index) touched[i] = 1;
+  }
+  int count = 0;
+  for (char t : touched) count += t;
+  CHECK(s.unknowns == count);
+  for (int k = 0; k < s.unknowns; ++k) CHECK(touched[s.control[k]]);
+  const std::vector<double> full = s.expand(cu, basis->size());
+  for (int i = 0; i < basis->size(); ++i) CHECK(full[i] == (touched[i] ? c[i] : 0.0));
+  CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(Smoothness::tikhonov, 1.0), AlgorithmError);
+}
+
+TEST_CASE("least squares: smoothness rows and T-mesh edges", "[evolution][rows]") {
+  // Uniform grid of n cells per axis: 3 n (n + 1)^2 lattice edges, each between neighbouring vertices.
+  const int depth = 3, n = 1 << depth;
+  TSplineBasis uniform(uniform_octree(depth, 0.25));
+  const auto edges = control_edges(uniform);
+  CHECK(int(edges.size()) == 3 * n * (n + 1) * (n + 1));
+  for (const auto& e : edges) {
+    const Int3 a = uniform.vertex(e[0]), b = uniform.vertex(e[1]);
+    CHECK(std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) == uniform.octree().cell_size(depth));
+  }
+  // An adaptive T-mesh: every edge joins two control points on one lattice line, hanging ones included.
+  TSplineBasis adaptive(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
+  for (const auto& e : control_edges(adaptive)) {
+    const Int3 a = adaptive.vertex(e[0]), b = adaptive.vertex(e[1]);
+    CHECK(int(a[0] != b[0]) + int(a[1] != b[1]) + int(a[2] != b[2]) == 1);
+  }
+  const EvolutionOptions o = test::test_options("distance", "eigen_ldlt");
+  const LeastSquaresSystem tikhonov = test::step_system(test::sphere_data(800), o, Smoothness::tikhonov);
+  CHECK(tikhonov.smoothness_rows == tikhonov.unknowns);
+  const LeastSquaresSystem first = test::step_system(test::sphere_data(800), o, Smoothness::first_order);
+  CHECK(first.smoothness_rows > first.unknowns);
+}
+
+TEST_CASE("normal equations equal A^T W A and A^T W b", "[evolution][rows]") {
+  const EvolutionOptions o = test::test_options("distance", "eigen_ldlt");
+  for (Smoothness smoothness : {Smoothness::tikhonov, Smoothness::first_order}) {
+    const LeastSquaresSystem s = test::step_system(test::sphere_data(600), o, smoothness);
+    const Eigen::MatrixXd A = dense_rows(s);
+    const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(s.weight.data(), s.rows());
+    const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(s.rhs.data(), s.rows());
+    const Eigen::MatrixXd N = A.transpose() * w.asDiagonal() * A;
+    const Eigen::VectorXd g = A.transpose() * (w.asDiagonal() * b);
+    const NormalEquations ne = normal_equations(s);
+    const Eigen::MatrixXd lower = Eigen::MatrixXd(ne.lower);
+    const Eigen::MatrixXd expected = N.triangularView<Eigen::Lower>();
+    CHECK((lower - expected).cwiseAbs().maxCoeff() <= 1e-12 * N.cwiseAbs().maxCoeff());
+    CHECK((ne.rhs - g).norm() <= 1e-12 * g.norm());
+    // The objective and its gradient agree with the dense forms.
+    const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(s.unknowns, -0.3, 0.4);
+    CHECK(s.objective(u) == Approx((w.array() * (A * u - b).array().square()).sum()));
+    CHECK((s.normal_residual(u) - (N * u - g)).norm() <= 1e-10 * g.norm());
+  }
+}
