@@ -17,6 +17,8 @@ namespace dtsl {
 
 namespace {
 
+constexpr int kMaxStepHalvings = 3;
+
 struct DtslOptions final : Options {
   EvolutionOptions evolution;
   std::string polygonizer = "marching_triangulation";
@@ -79,19 +81,33 @@ class DtslPipeline final : public Reconstructor {
     const double finest = tree.unit() * std::pow(2.0, tree.max_depth() - tree.finest_leaf_level());  // finest cell side
     const double delta = std::max(options_.min_step, options_.step_factor * std::sqrt(3.0) * finest);
     clock.restart();
-    auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
-    apply_assignment(polygonizer->options(), "step", std::to_string(delta), "polygonizer");
-    PolygonizeResult mi = polygonizer->polygonize(f, points);
-    StageRecord mt{"MT", clock.seconds(), mi.mesh, "MI", to_json(mi.summary)};
-    mt.summary["step"] = delta;
+    // A step too large for the level set's curvature somewhere is reported by the polygonizer; the
+    // remedy it names is a smaller step, so halve it (a bounded number of times) rather than fail.
+    double step = delta;
+    int retries = 0;
+    std::optional<PolygonizeResult> mi;
+    for (;;) {
+      auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
+      apply_assignment(polygonizer->options(), "step", std::to_string(step), "polygonizer");
+      try {
+        mi = polygonizer->polygonize(f, points);
+        break;
+      } catch (const AlgorithmError&) {
+        if (++retries > kMaxStepHalvings || step / 2 < options_.min_step) throw;
+        step /= 2;
+      }
+    }
+    StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary)};
+    mt.summary["step"] = step;
+    mt.summary["step_halvings"] = retries;
     result.stages.push_back(mt);
-    result.summary["delta"] = delta;
+    result.summary["delta"] = step;
 
     // D-Map: displacement along grad f (paper §3).
-    TriangleMesh md = mi.mesh;
+    TriangleMesh md = mi->mesh;
     if (options_.displacement) {
       clock.restart();
-      DisplacementResult dr = displace_mesh(f, mi.mesh, points, options_.displace);
+      DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
       md = dr.mesh;
       result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary});
     }
@@ -101,7 +117,7 @@ class DtslPipeline final : public Reconstructor {
     if (options_.sharpen) {
       clock.restart();
       sharpen::BilateralEvolutionOptions b = options_.bilateral;
-      b.delta = delta;
+      b.delta = step;
       sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
       ms = br.mesh;
       result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary});
