@@ -178,7 +178,7 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
     if (s.IsMap()) {  // a single axis may be written without the list
       YAML::Node list(YAML::NodeType::Sequence);
       list.push_back(s);
-      s = list;
+      s.reset(list);  // reset, not =: assignment would write into the config document itself
     }
     if (!s.IsSequence()) throw ConfigError("sweep: expected {key, values} or a list of them");
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -195,25 +195,31 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
   }
   ex.resolved = root;
 
-  // Expand the sweep's Cartesian product; a run names only the sweep values that change its dataset or
-  // its pipeline, so pipelines a sweep does not touch run once, not once per value.
+  // Expand the sweep's Cartesian product; a run names only the sweep axes that address its dataset or
+  // its pipeline, so pipelines a sweep does not touch run once, not once per value. What an axis
+  // addresses is found by writing a probe value at its path (comparing with the swept values would miss
+  // a value equal to the config's own).
+  std::vector<std::vector<bool>> axis_dataset(ex.sweep.size()), axis_pipeline(ex.sweep.size());
+  for (std::size_t a = 0; a < ex.sweep.size(); ++a) {
+    YAML::Node probe = YAML::Clone(root);
+    try {
+      set_yaml_path(probe, ex.sweep[a].key, YAML::Node("__dtsl_sweep_probe__"));
+    } catch (const ConfigError& e) {
+      throw ConfigError("sweep[" + std::to_string(a) + "].key: " + e.what());
+    }
+    for (std::size_t di = 0; di < root["datasets"].size(); ++di)
+      axis_dataset[a].push_back(dump(probe["datasets"][di]) != dump(root["datasets"][di]));
+    for (std::size_t pi = 0; pi < root["pipelines"].size(); ++pi)
+      axis_pipeline[a].push_back(dump(probe["pipelines"][pi]) != dump(root["pipelines"][pi]));
+  }
   std::vector<std::size_t> index(ex.sweep.size(), 0);
   std::set<std::string> ids;
   for (;;) {
     YAML::Node doc = YAML::Clone(root);
     std::vector<std::pair<std::string, std::string>> assignment;
-    std::vector<YAML::Node> single;  // the document with only one assignment, to see what it touches
     for (std::size_t a = 0; a < ex.sweep.size(); ++a) {
       const YAML::Node& v = ex.sweep[a].values[index[a]];
-      const std::string ctx = "sweep[" + std::to_string(a) + "]";
-      try {
-        set_yaml_path(doc, ex.sweep[a].key, YAML::Clone(v));
-        YAML::Node one = YAML::Clone(root);
-        set_yaml_path(one, ex.sweep[a].key, YAML::Clone(v));
-        single.push_back(one);
-      } catch (const ConfigError& e) {
-        throw ConfigError(ctx + ".key: " + e.what());
-      }
+      set_yaml_path(doc, ex.sweep[a].key, YAML::Clone(v));
       assignment.push_back({ex.sweep[a].key, v.IsScalar() ? v.Scalar() : dump(v)});
     }
     for (std::size_t di = 0; di < doc["datasets"].size(); ++di) {
@@ -221,8 +227,8 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
       const std::string dctx = "datasets[" + std::to_string(di) + "]";
       const std::string dname = validate_dataset(d, dctx);
       std::vector<std::pair<std::string, std::string>> dsweep;
-      for (std::size_t a = 0; a < single.size(); ++a)
-        if (dump(single[a]["datasets"][di]) != dump(root["datasets"][di])) dsweep.push_back(assignment[a]);
+      for (std::size_t a = 0; a < assignment.size(); ++a)
+        if (axis_dataset[a][di]) dsweep.push_back(assignment[a]);
       for (std::size_t pi = 0; pi < doc["pipelines"].size(); ++pi) {
         const YAML::Node p = doc["pipelines"][pi];
         RunSpec run;
@@ -232,8 +238,8 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
         run.dataset = YAML::Clone(d);
         run.pipeline = YAML::Clone(p);
         run.sweep = dsweep;
-        for (std::size_t a = 0; a < single.size(); ++a)
-          if (dump(single[a]["pipelines"][pi]) != dump(root["pipelines"][pi])) run.sweep.push_back(assignment[a]);
+        for (std::size_t a = 0; a < assignment.size(); ++a)
+          if (axis_pipeline[a][pi]) run.sweep.push_back(assignment[a]);
         run.dataset_key = dname;
         for (const auto& [k, v] : dsweep) run.dataset_key += "__" + safe(k + "=" + v);
         run.id = dname + "__" + run.pipeline_name;

@@ -233,3 +233,20 @@ table: {columns: [dataset, e_avr@MI, e_avr@MD, e_avr@MS, time@TL, time@MT, time@
   std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   CHECK(!contains(table.substr(table.rfind("| torus")), "–"));
 }
+
+TEST_CASE("a sweep names its value in every run it addresses, the config's own value included") {
+  TempDir tmp;
+  const std::string config = tmp.file("sweep.yaml", std::string(kTinyExperiment) +
+                                                         "  - {name: hoppe, type: pcl_mc_hoppe, options: {grid_resolution: 30}}\n"
+                                                         "sweep: {key: pipelines.poisson.options.depth, values: [5, 6]}\n");
+  const Outcome o = dtsl("run " + config + " --results " + (tmp.path / "results").string() + " --run-id s");
+  INFO(o.output);
+  REQUIRE(o.code == 0);
+  const fs::path runs = tmp.path / "results/tiny/s/runs";
+  // depth 5 is also the config's own value: it still gets its own, named run.
+  CHECK(fs::exists(runs / "ball__poisson__pipelines.poisson.options.depth_6/metrics.json"));
+  CHECK(fs::exists(runs / "ball__poisson__pipelines.poisson.options.depth_5/metrics.json"));
+  // The pipeline the sweep does not address runs once.
+  CHECK(fs::exists(runs / "ball__hoppe/metrics.json"));
+  CHECK(std::distance(fs::directory_iterator(runs), fs::directory_iterator()) == 3);
+}
