@@ -13,7 +13,8 @@
 namespace dtsl {
 
 void DisplacementOptions::visit(FieldVisitor& v) {
-  v.field("sigma", sigma, "Gaussian filter width in frame units (0 = the base mesh's mean edge length ~ delta)");
+  v.field("sigma", sigma, "Gaussian filter width in frame units (0 = sigma_factor x the base mesh's mean edge length)");
+  v.field("sigma_factor", sigma_factor, "sigma = sigma_factor x mean edge length (~ delta) when sigma is 0");
   v.field("support", support, "foot points farther than this x sigma from a vertex are ignored");
   v.field("min_points", min_points, "a vertex with fewer foot points within the support is a hole vertex");
   v.field("fill_holes", fill_holes, "fill hole vertices harmonically from their neighbours (false: d = 0 there)");
@@ -23,6 +24,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "|d(v)| >= this x the smaller curvature radius puts v at risk: its one-ring is tested for flips");
   v.field("signed_curvature_check", signed_curvature_check,
           "only radii whose centre lies on the displacement's side count (inward on convex, outward on concave)");
+  v.field("residual_passes", residual_passes,
+          "passes that add the Gaussian mean of each point's remaining offset from the displaced mesh "
+          "(removes the filter's bias where d varies; 0 = the paper's single filter)");
   v.field("check_all_faces", check_all_faces, "test every triangle for flips, not only around vertices at risk");
   v.field("report_errors", report_errors, "report e_avr/e_max before and after (one-ring search, approximate)");
   projection.visit(v);
@@ -30,10 +34,12 @@ void DisplacementOptions::visit(FieldVisitor& v) {
 
 void DisplacementOptions::check() const {
   check_non_negative("sigma", sigma);
+  check_range("sigma_factor", sigma_factor, 0.05, 10.0);
   check_range("support", support, 0.5, 10.0);
   check_range("min_points", min_points, 1, 1000000);
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
+  check_range("residual_passes", residual_passes, 0, 20);
   projection.check();
 }
 
@@ -66,7 +72,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   const ProjectionResult& pr = r.projection;
 
   const std::size_t nv = base.vertices.size();
-  const double sigma = options.sigma > 0 ? options.sigma : locator.mean_edge_length();
+  const double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * locator.mean_edge_length();
   const double radius = options.support * sigma;
   const double cos_max = std::cos(options.max_normal_angle_deg * M_PI / 180.0);
 
@@ -83,9 +89,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // sigma << the curvature radii is the geodesic one the paper's per-triangle lists I_i describe; the
   // normal test keeps the other side of a thin part out. The lists I_i stay in the result for Phase 3.
   std::vector<Vec3> normals(nv);
-  std::vector<double> d(nv, 0.0);
   std::vector<char> known(nv, 0);
   std::vector<PrincipalCurvatures> curv(nv);
+  // Per vertex, the foot points of its filter and their Gaussian weights, normalised to sum 1.
+  std::vector<std::vector<std::pair<int, double>>> filter(nv);
   const double inv2s2 = 1.0 / (2.0 * sigma * sigma);
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < static_cast<long>(nv); ++v) {
@@ -97,20 +104,48 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                  : base.has_normals()     ? base.normals[v]
                                           : Vec3::Zero();
     curv[v] = principal_curvatures(g, H);
-    double wsum = 0.0, dsum = 0.0;
-    int count = 0;
+    double wsum = 0.0;
+    std::vector<std::pair<int, double>>& taps = filter[v];
     foot_grid.for_each_within(base.vertices[v], radius, [&](int i, double d2) {
       const int k = foot_id[i];
       if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
       const double w = std::exp(-d2 * inv2s2);
       wsum += w;
-      dsum += w * pr.displacements[k];
-      ++count;
+      taps.emplace_back(k, w);
     });
-    if (count >= options.min_points && wsum > 0) {
-      d[v] = dsum / wsum;
+    if (static_cast<int>(taps.size()) >= options.min_points && wsum > 0) {
+      std::sort(taps.begin(), taps.end());  // a fixed summation order: the same d whatever the threads
+      for (auto& tap : taps) tap.second /= wsum;
       known[v] = 1;
+    } else {
+      taps.clear();
     }
+  }
+  const auto filtered = [&](const std::vector<double>& value, std::vector<double>& d) {
+#pragma omp parallel for schedule(static)
+    for (long v = 0; v < static_cast<long>(nv); ++v) {
+      double sum = 0.0;
+      for (const auto& [k, w] : filter[v]) sum += w * value[k];
+      d[v] += sum;
+    }
+  };
+  std::vector<double> d(nv, 0.0);
+  filtered(pr.displacements, d);
+  // Residual passes: the offset each point still has from the displaced mesh, along its foot normal.
+  std::vector<double> residual(points.size(), 0.0);
+  int passes = 0;
+  for (; passes < options.residual_passes; ++passes) {
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < static_cast<long>(points.size()); ++k) {
+      residual[k] = 0.0;
+      if (!pr.valid[k]) continue;
+      const MeshLocation& loc = pr.locations[k];
+      const Face& face = base.faces[loc.face];
+      Vec3 moved = Vec3::Zero();
+      for (int c = 0; c < 3; ++c) moved += loc.barycentric[c] * (base.vertices[face[c]] + d[face[c]] * normals[face[c]]);
+      residual[k] = (points[k] - moved).dot(pr.foot_normals[k]);
+    }
+    filtered(residual, d);
   }
   for (std::size_t v = 0; v < nv; ++v)
     if (!known[v]) r.hole_vertices.push_back(static_cast<int>(v));
@@ -161,6 +196,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"vertices", nv},
                       {"faces", base.faces.size()},
                       {"sigma", sigma},
+                      {"residual_passes", passes},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
                       {"hole_vertices_filled", options.fill_holes ? fill.unknown - fill.unreached : 0},

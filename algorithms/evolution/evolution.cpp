@@ -18,6 +18,7 @@ namespace dtsl {
 
 nlohmann::json to_json(const IterationRecord& r) {
   nlohmann::json j = {{"iteration", r.iteration},
+                      {"round", r.round},
                       {"seconds", r.seconds},
                       {"time_step", r.time_step},
                       {"surface_points", r.surface_points},
@@ -281,7 +282,62 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
   const TSpline initial = initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
-  LevelSetResult result = evolve_level_set(initial, points, options);
+  EvolutionOptions stage = options;
+  stage.final_refinement = false;
+  LevelSetResult result = evolve_level_set(initial, points, stage);
+
+  // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
+  nlohmann::json rounds = nlohmann::json::array();
+  const auto record_round = [&](const LevelSetResult& r, int round) {
+    rounds.push_back({{"round", round},
+                      {"control_points", r.evolved.basis().size()},
+                      {"finest_level", r.evolved.tmesh().finest_leaf_level()},
+                      {"iterations", r.summary["iterations"]},
+                      {"stop_reason", r.stop_reason},
+                      {"mean_distance", r.summary["mean_distance"]},
+                      {"seconds", r.summary["evolution_seconds"]}});
+  };
+  record_round(result, 0);
+  stage.max_iterations = options.fine.max_iterations;
+  for (int round = 1; round <= options.fine.levels; ++round) {
+    const int level = result.evolved.tmesh().finest_leaf_level() + 1;
+    if (level > options.tmesh.max_depth) break;
+    TSpline refined = refine_toward_data(result.evolved, points, level, options.fine);
+    if (refined.shared_basis() == result.evolved.shared_basis()) break;  // nothing left to split
+    LevelSetResult next = evolve_level_set(refined, points, stage);
+    const int offset = result.history.back().iteration + 1;
+    for (IterationRecord& r : next.history) {
+      r.iteration += offset;
+      r.round = round;
+      r.seconds += result.history.back().seconds;
+    }
+    for (auto& [key, value] : next.summary["evolution_timings"].items())
+      value = value.get<double>() + result.summary["evolution_timings"][key].get<double>();
+    next.best_iteration += int(result.history.size());
+    next.history.insert(next.history.begin(), result.history.begin(), result.history.end());
+    record_round(next, round);
+    result = std::move(next);
+  }
+
+  if (options.final_refinement) {
+    RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, stage.solver_plugin());
+    result.level_set = std::move(refined.level_set);
+    result.summary["final_refinement"] = to_json(refined.report);
+    result.refinement = std::move(refined.report);
+  }
+  result.summary["options"] = to_json(stage);
+  result.summary["options"]["final_refinement"] = options.final_refinement;
+  result.summary["options"]["max_iterations"] = options.max_iterations;
+  result.summary["tmesh"] = {{"control_points", result.level_set.basis().size()},
+                             {"leaves", result.level_set.tmesh().leaf_count()},
+                             {"finest_level", result.level_set.tmesh().finest_leaf_level()},
+                             {"max_depth", result.level_set.tmesh().max_depth()},
+                             {"initial_control_points", basis->size()},
+                             {"initial_finest_level", basis->octree().finest_leaf_level()}};
+  result.summary["rounds"] = std::move(rounds);
+  result.summary["iterations"] = int(result.history.size()) - 1;
+  result.summary["best_iteration"] = result.best_iteration;
+  result.summary["evolution_seconds"] = result.history.back().seconds;
   result.summary["tmesh_seconds"] = tmesh_seconds;
   result.summary["seconds"] = clock.seconds();
   return result;

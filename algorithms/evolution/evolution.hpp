@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/evolution/coarse_to_fine.hpp"
 #include "algorithms/evolution/final_refinement.hpp"
 #include "algorithms/evolution/solver.hpp"
 #include "algorithms/evolution/velocity.hpp"
@@ -41,8 +42,8 @@
 namespace dtsl {
 
 /// Every parameter of the level-set stage. The chosen velocity's and solver's own options, the T-mesh
-/// options and the final refinement's are visited with the prefixes velocity_, solver_, tmesh_ and
-/// refine_ (e.g. `velocity: geodesic` then `velocity_lambda: 0.5`, `tmesh_max_depth: 5`), so one flat
+/// options, the coarse-to-fine rounds' and the final refinement's are visited with the prefixes
+/// velocity_, solver_, tmesh_, fine_ and refine_ (e.g. `velocity: geodesic` then `velocity_lambda: 0.5`, `tmesh_max_depth: 5`), so one flat
 /// YAML map configures the stage. A value type: copies clone the plugins.
 struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
@@ -66,6 +67,7 @@ struct EvolutionOptions final : Options {
   double initial_box_margin = 0.1;
   bool final_refinement = true;
   TMeshOptions tmesh;
+  CoarseToFineOptions fine;
   FinalRefinementOptions refinement;
 
   EvolutionOptions();
@@ -92,6 +94,7 @@ struct EvolutionOptions final : Options {
 /// One evolution step, measured before the step is taken (iteration 0 is the initial level set).
 struct IterationRecord {
   int iteration = 0;
+  int round = 0;                     ///< coarse-to-fine round (0: the initial T-mesh; coarse_to_fine.hpp)
   double seconds = 0.0;              ///< wall time since the evolution started, at the end of this step
   double time_step = 0.0;            ///< dt of the step taken (0 for the last record: no step)
   int surface_points = 0, band_points = 0, unknowns = 0;
@@ -116,8 +119,8 @@ struct LevelSetResult {
   nlohmann::json summary;               ///< options, counts, timings, stop reason, final distances
 };
 
-/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame), initial sphere, evolution, final
-/// refinement. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
+/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame), initial sphere, evolution, the
+/// coarse-to-fine rounds (options.fine), final refinement. The history runs through all rounds. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
 /// input the stage cannot handle (fewer than 4 points, all points coinciding, non-finite or outside
 /// the T-mesh's domain) or a solver failure.
 LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options);

@@ -36,6 +36,7 @@ EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
   initial_box_margin = other.initial_box_margin;
   final_refinement = other.final_refinement;
   tmesh = other.tmesh;
+  fine = other.fine;
   refinement = other.refinement;
   velocity_name_ = other.velocity_name_;
   solver_name_ = other.solver_name_;
@@ -119,6 +120,8 @@ void EvolutionOptions::visit(FieldVisitor& v) {
   solver_plugin_->options().visit(solver_fields);
   PrefixedVisitor tmesh_fields(v, "tmesh_");
   tmesh.visit(tmesh_fields);
+  PrefixedVisitor fine_fields(v, "fine_");
+  fine.visit(fine_fields);
   PrefixedVisitor refine_fields(v, "refine_");
   refinement.visit(refine_fields);
 }
@@ -148,6 +151,7 @@ void EvolutionOptions::check() const {
   checked_with_prefix("velocity_", [&] { velocity_plugin().options().check(); });
   checked_with_prefix("solver_", [&] { solver_plugin().options().check(); });
   checked_with_prefix("tmesh_", [&] { tmesh.check(); });
+  checked_with_prefix("fine_", [&] { fine.check(); });
   checked_with_prefix("refine_", [&] { refinement.check(); });
 }
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
 
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
+#include "algorithms/evolution/level_set_transfer.hpp"
 #include "algorithms/evolution/sign_guard.hpp"
 #include "algorithms/evolution/zero_set.hpp"
 #include "framework/core/error.hpp"
@@ -46,33 +46,6 @@ nlohmann::json to_json(const RefinementReport& r) {
           {"seconds", r.seconds}};
 }
 
-namespace {
-
-/// The strongest 2:1 balance the T-mesh satisfies: refining keeps it (refine_octree rebalances).
-Balance balance_of(const Octree& tree) {
-  if (is_balanced(tree, Balance::vertex)) return Balance::vertex;
-  if (is_balanced(tree, Balance::edge)) return Balance::edge;
-  return Balance::face;
-}
-
-/// Coefficients on `basis` for the function `old`: kept where a control point has the same lattice
-/// position and knots as one of old's, the old f at the Greville point otherwise.
-std::vector<double> transfer(const TSpline& old, const TSplineBasis& basis) {
-  const TSplineBasis& previous = old.basis();
-  std::map<Int3, int> old_index;
-  for (int i = 0; i < previous.size(); ++i) old_index.emplace(previous.vertex(i), i);
-  std::vector<double> c(basis.size());
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < basis.size(); ++i) {
-    const auto it = old_index.find(basis.vertex(i));
-    if (it != old_index.end() && previous.knots(it->second) == basis.knots(i)) c[i] = old.coefficients()[it->second];
-    else c[i] = old.evaluate(basis.greville(i));
-  }
-  return c;
-}
-
-}  // namespace
-
 RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
                                  const FinalRefinementOptions& options, LevelSetSolver& solver,
                                  const std::vector<Vec3>& focus) {
@@ -110,13 +83,8 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   }
 
   // 2. Transfer f onto the refined T-mesh.
-  std::shared_ptr<const TSplineBasis> basis = level_set.shared_basis();
-  std::vector<double> c = level_set.coefficients();
-  if (report.rounds > 0) {
-    basis = std::make_shared<TSplineBasis>(std::move(tree));
-    c = transfer(level_set, *basis);
-  }
-  TSpline f(basis, std::move(c));
+  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree)) : level_set;
+  const std::shared_ptr<const TSplineBasis> basis = f.shared_basis();
   report.control_points_after = basis->size();
 
   // 3. Gauss-Newton steps of the direct fit.

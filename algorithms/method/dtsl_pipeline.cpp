@@ -11,6 +11,7 @@
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
+#include "framework/metrics/metrics.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 
 namespace dtsl {
@@ -23,9 +24,10 @@ struct DtslOptions final : Options {
   EvolutionOptions evolution;
   std::string polygonizer = "marching_triangulation";
   double step_factor = 0.2;  // delta = step_factor x l_T (paper §2.2: 0.2)
-  double min_step = 0.008;
+  double min_step = 0.004;
   bool displacement = true;
   DisplacementOptions displace;
+  int flip_refinements = 2;
   bool sharpen = true;
   sharpen::BilateralEvolutionOptions bilateral;
 
@@ -39,6 +41,10 @@ struct DtslOptions final : Options {
     v.field("displacement", displacement, "run Phase 2, the displacement mapping (paper §3); false: MD = MI");
     PrefixedVisitor d(v, "displace_");
     displace.visit(d);
+    v.field("flip_refinements", flip_refinements,
+            "paper §3.2: when displacement flips triangles, refine the level set one level near the flips "
+            "(final refinement with the flips as focus), re-triangulate and displace again, at most this many "
+            "times; the result with the fewest flips is kept (0: never)");
     v.field("sharpen", sharpen, "run Phase 3, the data-driven bilateral evolution (paper §4); false: MS = MD");
     PrefixedVisitor b(v, "bilateral_");
     bilateral.visit(b);
@@ -47,6 +53,7 @@ struct DtslOptions final : Options {
     checked_with_prefix("evolution_", [&] { evolution.check(); });
     check_range("step_factor", step_factor, 0.01, 2.0);
     check_range("min_step", min_step, 1e-4, 0.5);
+    check_range("flip_refinements", flip_refinements, 0, 10);
     require(polygonizers().contains(polygonizer), "polygonizer",
             "unknown polygonizer '" + polygonizer + "' (see `dtsl list polygonizer`)");
     checked_with_prefix("displace_", [&] { displace.check(); });
@@ -70,44 +77,67 @@ class DtslPipeline final : public Reconstructor {
     LevelSetResult level = compute_level_set(points, options_.evolution);
     StageRecord tl{"TL", clock.seconds(), std::nullopt, "", level.summary};
     tl.summary["control_points"] = level.level_set.basis().size();
-    tl.summary["iterations"] = level.history.size();
+    tl.summary["iterations"] = int(level.history.size()) - 1;
+    // Per-step record without the solver details (convergence plots, `dtsl report`).
+    nlohmann::json history = nlohmann::json::array();
+    for (const IterationRecord& r : level.history) {
+      nlohmann::json j = to_json(r);
+      j.erase("solve");
+      history.push_back(std::move(j));
+    }
+    tl.summary["history"] = std::move(history);
     tl.summary["stop_reason"] = level.stop_reason;
     result.stages.push_back(tl);
     result.summary["nt"] = level.level_set.basis().size();
-    const TSpline& f = level.level_set;
+    TSpline f = level.level_set;
 
     // MT: the initial mesh MI (paper §2.2), step 0.2 l_T.
     const Octree& tree = f.tmesh();
     const double finest = tree.unit() * std::pow(2.0, tree.max_depth() - tree.finest_leaf_level());  // finest cell side
     const double delta = std::max(options_.min_step, options_.step_factor * std::sqrt(3.0) * finest);
     clock.restart();
-    // A step too large for the level set's curvature somewhere is reported by the polygonizer; the
-    // remedy it names is a smaller step, so halve it (a bounded number of times) rather than fail.
-    double step = delta;
     int retries = 0;
-    std::optional<PolygonizeResult> mi;
-    for (;;) {
-      auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
-      apply_assignment(polygonizer->options(), "step", std::to_string(step), "polygonizer");
-      try {
-        mi = polygonizer->polygonize(f, points);
-        break;
-      } catch (const AlgorithmError&) {
-        if (++retries > kMaxStepHalvings || step / 2 < options_.min_step) throw;
-        step /= 2;
-      }
-    }
+    double step = delta;
+    std::optional<PolygonizeResult> mi = polygonize(f, points, step, retries);
     StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary)};
     mt.summary["step"] = step;
     mt.summary["step_halvings"] = retries;
     result.stages.push_back(mt);
     result.summary["delta"] = step;
 
-    // D-Map: displacement along grad f (paper §3).
+    // D-Map: displacement along grad f (paper §3), with the refinement fallback on flipped triangles.
     TriangleMesh md = mi->mesh;
     if (options_.displacement) {
       clock.restart();
       DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
+      nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()});
+      for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
+        std::vector<Vec3> focus;
+        for (int v : dr.flipped_vertices) focus.push_back(mi->mesh.vertices[v]);
+        FinalRefinementOptions refine = options_.evolution.refinement;
+        refine.target_level = std::min(f.tmesh().finest_leaf_level() + 1, f.tmesh().max_depth());
+        RefinedLevelSet refined = refine_level_set(f, points, refine, options_.evolution.solver_plugin(), focus);
+        if (refined.report.rounds == 0) break;  // nothing left to refine near the flips
+        int halvings = 0;
+        std::optional<PolygonizeResult> base = polygonize(refined.level_set, points, step, halvings);
+        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, options_.displace);
+        flips.push_back(again.flipped_faces.size());
+        // Refinement must not change the topology Phase 1 found (a fit near a thin part can open a
+        // spurious handle): such a round is refused and the loop ends.
+        const MeshStats before = mesh_stats(mi->mesh), after = mesh_stats(base->mesh);
+        if (after.euler_characteristic != before.euler_characteristic || after.components != before.components) {
+          flips.push_back("topology changed: refused");
+          break;
+        }
+        if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
+        f = std::move(refined.level_set);
+        mi = std::move(base);
+        dr = std::move(again);
+      }
+      dr.summary["flips_per_round"] = flips;
+      dr.summary["control_points"] = f.basis().size();
+      result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
+      result.summary["nt"] = f.basis().size();
       md = dr.mesh;
       result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary});
     }
@@ -127,6 +157,24 @@ class DtslPipeline final : public Reconstructor {
   }
 
  private:
+  /// The initial mesh at marching step `step`. A step too large for the level set's curvature
+  /// somewhere is reported by the polygonizer; the remedy it names is a smaller step, so halve it (a
+  /// bounded number of times, never below min_step) rather than fail. `step` and `halvings` return
+  /// what was used.
+  std::optional<PolygonizeResult> polygonize(const TSpline& f, const std::vector<Vec3>& points, double& step,
+                                             int& halvings) const {
+    for (;;) {
+      auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
+      apply_assignment(polygonizer->options(), "step", std::to_string(step), "polygonizer");
+      try {
+        return polygonizer->polygonize(f, points);
+      } catch (const AlgorithmError&) {
+        if (++halvings > kMaxStepHalvings || step / 2 < options_.min_step) throw;
+        step /= 2;
+      }
+    }
+  }
+
   DtslOptions options_;
 };
 

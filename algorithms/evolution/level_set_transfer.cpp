@@ -1,0 +1,29 @@
+#include "algorithms/evolution/level_set_transfer.hpp"
+
+#include <map>
+#include <memory>
+
+namespace dtsl {
+
+Balance balance_of(const Octree& tree) {
+  if (is_balanced(tree, Balance::vertex)) return Balance::vertex;
+  if (is_balanced(tree, Balance::edge)) return Balance::edge;
+  return Balance::face;
+}
+
+TSpline transfer_level_set(const TSpline& old, Octree refined) {
+  auto basis = std::make_shared<TSplineBasis>(std::move(refined));
+  const TSplineBasis& previous = old.basis();
+  std::map<Int3, int> old_index;
+  for (int i = 0; i < previous.size(); ++i) old_index.emplace(previous.vertex(i), i);
+  std::vector<double> c(basis->size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < basis->size(); ++i) {
+    const auto it = old_index.find(basis->vertex(i));
+    if (it != old_index.end() && previous.knots(it->second) == basis->knots(i)) c[i] = old.coefficients()[it->second];
+    else c[i] = old.evaluate(basis->greville(i));
+  }
+  return TSpline(std::move(basis), std::move(c));
+}
+
+}  // namespace dtsl
