@@ -12,8 +12,8 @@
 
 namespace dtsl::cli {
 
-/// The pipeline `dtsl reconstruct` uses when none is named.
-constexpr const char* kDefaultPipeline = "pcl_poisson";
+/// The pipeline `dtsl reconstruct` uses when none is named: the paper's method.
+constexpr const char* kDefaultPipeline = "dtsl";
 
 int reconstruct_command(Args& args) {
   const std::string name = args.value("pipeline", kDefaultPipeline);

@@ -299,6 +299,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
   };
   record_round(result, 0);
   stage.max_iterations = options.fine.max_iterations;
+  if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
   for (int round = 1; round <= options.fine.levels; ++round) {
     const int level = result.evolved.tmesh().finest_leaf_level() + 1;
     if (level > options.tmesh.max_depth) break;

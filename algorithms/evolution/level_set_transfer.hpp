@@ -1,7 +1,7 @@
 // Moving a level set onto a refined T-mesh (the final refinement and the coarse-to-fine evolution,
 // DESIGN.md §1): control points whose knot vectors did not change keep their coefficient (f is
 // unchanged where only they are active), the new or changed ones take the old f at their Greville
-// point (quasi-interpolation), so f changes by O(h^4) of the old cells at most.
+// point (quasi-interpolation, O(h^2) in the old cell size h): f changes only where knots changed.
 #pragma once
 
 #include "algorithms/tspline/tspline.hpp"

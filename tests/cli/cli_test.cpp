@@ -177,10 +177,19 @@ TEST_CASE("dtsl reconstruct: one file in, one mesh out; bad files rejected witho
     }
   const std::string in = tmp.file("ball.xyz", xyz);
   const std::string out = (tmp.path / "ball.ply").string();
-  const Outcome ok = dtsl("reconstruct " + in + " " + out + " --set depth=5");
+  const Outcome ok = dtsl("reconstruct " + in + " " + out + " --pipeline pcl_poisson --set depth=5");
   INFO(ok.output);
   REQUIRE(ok.code == 0);
   CHECK(fs::file_size(out) > 0);
+  // The default pipeline is the method, `dtsl`; its options are reached the same way.
+  const std::string method_out = (tmp.path / "ball_dtsl.off").string();
+  const Outcome method = dtsl("reconstruct " + in + " " + method_out + " --set sharpen=false");
+  INFO(method.output);
+  REQUIRE(method.code == 0);
+  CHECK(fs::file_size(method_out) > 0);
+  const std::string never = (tmp.path / "never.off").string();
+  CHECK(dtsl("reconstruct " + in + " " + never + " --set depth=5").code != 0);  // not an option of dtsl
+  CHECK(!fs::exists(never));
 
   struct Case {
     std::string content;

@@ -56,6 +56,7 @@ inline EvolutionOptions test_options(const std::string& velocity, const std::str
   o.solver = solver;
   o.tmesh.max_depth = max_depth;
   o.tmesh.points_per_cell = 16;
+  o.fine.levels = 0;  // the evolution on one T-mesh; coarse_to_fine_test.cpp tests the rounds
   return o;
 }
 

@@ -1,0 +1,60 @@
+// The coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again. On the
+// non-uniformly sampled torus a round must give a finer T-mesh near the data, bring the level set
+// closer to the data than the first evolution left it, and keep the genus; refine_toward_data must
+// leave f unchanged up to the transfer's O(h^2) and split only near the data.
+#include <catch2/catch.hpp>
+
+#include "algorithms/evolution/coarse_to_fine.hpp"
+#include "algorithms/evolution/evolution.hpp"
+#include "framework/metrics/metrics.hpp"
+#include "tests/evolution/fixtures.hpp"
+
+using namespace dtsl;
+
+TEST_CASE("coarse-to-fine: a round refines near the data, fits closer, keeps genus 1", "[evolution][fine]") {
+  const std::vector<Vec3>& points = test::torus_data();
+  EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
+  o.tmesh.points_per_cell = 64;  // coarse first T-mesh: level 4 at most
+  o.final_refinement = false;
+  EvolutionOptions single = o;
+  o.fine.levels = 1;
+  const LevelSetResult coarse = compute_level_set(points, single);
+  const LevelSetResult fine = compute_level_set(points, o);
+  INFO(fine.summary["rounds"].dump());
+  REQUIRE(fine.summary["rounds"].size() == 2);
+  CHECK(fine.history.back().round == 1);
+  CHECK(fine.level_set.tmesh().finest_leaf_level() == coarse.level_set.tmesh().finest_leaf_level() + 1);
+  CHECK(fine.level_set.basis().size() > coarse.level_set.basis().size());
+  const test::NewtonDistances before = test::newton_distances(coarse.level_set, points);
+  const test::NewtonDistances after = test::newton_distances(fine.level_set, points);
+  INFO("mean Newton distance " << before.mean << " -> " << after.mean);
+  CHECK(after.mean < before.mean);
+  const MeshStats s = mesh_stats(test::zero_set_mesh(fine.level_set, points));
+  CHECK(s.genus == 1.0);
+  CHECK(s.components == 1);
+}
+
+TEST_CASE("refine_toward_data: splits only near the data, f moves by much less than a cell", "[evolution][fine]") {
+  const std::vector<Vec3>& points = test::torus_data();
+  EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
+  o.final_refinement = false;
+  const LevelSetResult r = compute_level_set(points, o);
+  CoarseToFineOptions fine;
+  const int level = r.level_set.tmesh().finest_leaf_level() + 1;
+  const TSpline refined = refine_toward_data(r.level_set, points, level, fine);
+  REQUIRE(refined.basis().size() > r.level_set.basis().size());
+  const Octree& tree = refined.tmesh();
+  // The torus's hole centre and the domain's corner hold no data: not split to the new level.
+  CHECK(tree.leaf(tree.locate(Vec3(0, 0, 0))).level < level);
+  CHECK(tree.leaf(tree.locate(Vec3(1.2, 1.2, 1.2))).level < level);
+  for (std::size_t k = 0; k < points.size(); k += 20) {
+    const double side = r.level_set.tmesh().leaf_side(r.level_set.tmesh().locate(points[k]));
+    CHECK(std::abs(refined.evaluate(points[k]) - r.level_set.evaluate(points[k])) < 0.25 * side);  // quasi-interpolation: O(h^2)
+  }
+  // Nothing to split any more at the level the T-mesh already has everywhere near the data: f itself.
+  const TSpline again = refine_toward_data(r.level_set, points, r.level_set.tmesh().finest_leaf_level() - 10, fine);
+  CHECK(again.shared_basis() == r.level_set.shared_basis());
+  CoarseToFineOptions bad;
+  bad.levels = -1;
+  CHECK_THROWS_WITH(refine_toward_data(r.level_set, points, level, bad), Catch::Contains("levels"));
+}
