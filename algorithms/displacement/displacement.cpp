@@ -17,6 +17,11 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("sigma_factor", sigma_factor, "sigma = sigma_factor x mean edge length (~ delta) when sigma is 0");
   v.field("support", support, "foot points farther than this x sigma from a vertex are ignored");
   v.field("min_points", min_points, "a vertex with fewer foot points within the support is a hole vertex");
+  v.field("min_weight", min_weight,
+          "a vertex whose Gaussian weights sum to less than this is a hole vertex (its feet are all far)");
+  v.field("spike_factor", spike_factor,
+          "|d(v) - mean d of its neighbours| above this x the mean edge length: a spike, refilled from the "
+          "neighbours (0: off)");
   v.field("fill_holes", fill_holes, "fill hole vertices harmonically from their neighbours (false: d = 0 there)");
   v.field("max_normal_angle_deg", max_normal_angle_deg,
           "ignore foot points whose normal differs from the vertex normal by more than this (thin parts)");
@@ -37,6 +42,8 @@ void DisplacementOptions::check() const {
   check_range("sigma_factor", sigma_factor, 0.05, 10.0);
   check_range("support", support, 0.5, 10.0);
   check_range("min_points", min_points, 1, 1000000);
+  check_range("min_weight", min_weight, 0.0, 1.0);
+  check_non_negative("spike_factor", spike_factor);
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
@@ -113,7 +120,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       wsum += w;
       taps.emplace_back(k, w);
     });
-    if (static_cast<int>(taps.size()) >= options.min_points && wsum > 0) {
+    if (static_cast<int>(taps.size()) >= options.min_points && wsum > 0 && wsum >= options.min_weight) {
       std::sort(taps.begin(), taps.end());  // a fixed summation order: the same d whatever the threads
       for (auto& tap : taps) tap.second /= wsum;
       known[v] = 1;
@@ -146,6 +153,22 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       residual[k] = (points[k] - moved).dot(pr.foot_normals[k]);
     }
     filtered(residual, d);
+  }
+  // Spikes: a vertex far off the mean of its neighbours is refilled from them with the holes.
+  std::size_t spikes = 0;
+  if (options.spike_factor > 0.0) {
+    const double limit = options.spike_factor * locator.mean_edge_length();
+    std::vector<char> spike(nv, 0);
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!known[v]) continue;
+      double sum = 0.0;
+      int count = 0;
+      for (int u : locator.vertex_neighbours(static_cast<int>(v)))
+        if (known[u]) sum += d[u], ++count;
+      if (count > 0 && std::abs(d[v] - sum / count) > limit) spike[v] = 1;
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      if (spike[v]) known[v] = 0, d[v] = 0.0, ++spikes;
   }
   for (std::size_t v = 0; v < nv; ++v)
     if (!known[v]) r.hole_vertices.push_back(static_cast<int>(v));
@@ -199,6 +222,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"residual_passes", passes},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
+                      {"spike_vertices", spikes},
                       {"hole_vertices_filled", options.fill_holes ? fill.unknown - fill.unreached : 0},
                       {"hole_vertices_unreached", fill.unreached},
                       {"displacement_mean_abs", dmean / static_cast<double>(nv)},

@@ -31,6 +31,13 @@ struct DisplacementOptions final : Options {
   double support = 3.0;
   /// A vertex with fewer foot points than this within the support is a hole vertex (harmonic fill).
   int min_points = 1;
+  /// A vertex whose Gaussian weights sum to less than this (all its foot points beyond ~2.4 sigma at
+  /// 0.05) is a hole vertex too: normalising tiny weights extrapolates one far point's d (ours).
+  double min_weight = 0.05;
+  /// A vertex whose d differs from the mean d of its neighbours by more than this x the mean edge
+  /// length is a spike (a foot point from another sheet, an extrapolated residual) and is refilled
+  /// harmonically from its neighbours (ours; 0 disables). Real corners stay below ~1.
+  double spike_factor = 3.0;
   /// Fill hole vertices harmonically from their neighbours; false leaves them on the base surface (d = 0).
   bool fill_holes = true;
   /// Foot points whose normal makes a larger angle than this (degrees) with the vertex normal are
