@@ -28,6 +28,8 @@ class Args {
 
 int run_command(Args& args, const std::vector<std::string>& command_line);
 int table_command(Args& args);
+int merge_command(Args& args, const std::vector<std::string>& command_line);
+int report_command(Args& args);
 int reconstruct_command(Args& args);
 int list_command(Args& args);
 

@@ -12,10 +12,19 @@ const char* kUsage = R"(usage: dtsl COMMAND [ARGS]
 
 commands:
   run CONFIG [--set KEY=VALUE ...] [--jobs N] [--results DIR] [--run-id ID] [--quiet]
+             [--shard i/N] [--dry-run]
         run an experiment (datasets x pipelines x sweep values); writes
         DIR/<experiment>/<run-id>/ (default DIR: results, run-id: a hash of the config)
         with meshes, metrics JSON per run and tables (Markdown, CSV, LaTeX).
         Started again, it skips the runs that finished.
+        --shard i/N: only runs k with k mod N = i-1 (i = 1..N); default run-id <hash>-shard<i>of<N>
+        --dry-run: list the runs (index, id) and the result directory; write nothing
+  merge OUT_DIR SHARD_DIR...
+        join the result directories of an experiment's shards into OUT_DIR (new), with the
+        tables an unsharded run would have; refuses different configs, overlaps, missing runs
+  report RESULT_DIR [--views N] [--size PIXELS] [--up x|y|z] [--closeup F] [--no-renders] [--quiet]
+        figures (renders of every run's points and stage meshes, convergence and timing plots,
+        metric-versus-parameter plots of sweeps) into RESULT_DIR/figures/ and RESULT_DIR/report.md
   table RESULT_DIR
         regenerate the tables of a result directory from its metrics JSON
   reconstruct IN OUT [--pipeline NAME] [--set KEY=VALUE ...]
@@ -43,6 +52,8 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return dtsl::cli::run_command(args, all);
     if (command == "table") return dtsl::cli::table_command(args);
+    if (command == "merge") return dtsl::cli::merge_command(args, all);
+    if (command == "report") return dtsl::cli::report_command(args);
     if (command == "reconstruct") return dtsl::cli::reconstruct_command(args);
     if (command == "list") return dtsl::cli::list_command(args);
     throw dtsl::cli::UsageError{"unknown command '" + command + "'"};

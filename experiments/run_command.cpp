@@ -7,6 +7,7 @@
 #include "framework/core/error.hpp"
 #include "framework/pipeline/experiment.hpp"
 #include "framework/pipeline/runner.hpp"
+#include "framework/pipeline/shard.hpp"
 
 namespace dtsl::cli {
 
@@ -17,6 +18,8 @@ int run_command(Args& args, const std::vector<std::string>& command_line) {
   options.results_root = args.value("results", "results");
   options.run_id = args.value("run-id");
   options.progress = !args.flag("quiet");
+  const std::string shard = args.value("shard");
+  const bool dry_run = args.flag("dry-run");
   options.command_line = command_line;
   const std::vector<std::string> rest = args.positionals();
   if (rest.size() != 1) throw UsageError{"run: expected one CONFIG file"};
@@ -32,7 +35,24 @@ int run_command(Args& args, const std::vector<std::string>& command_line) {
           std::string::npos)
     throw UsageError{"--run-id: use letters, digits, '_', '-', '.'"};
 
+  if (!shard.empty()) {
+    try {
+      options.shard = parse_shard(shard);
+    } catch (const ConfigError& e) {
+      throw UsageError{e.what()};
+    }
+  }
+
   const Experiment ex = load_experiment(rest[0], overrides);
+  if (dry_run) {  // what would run, and where; nothing is written
+    const std::string run_id = options.run_id.empty() ? default_run_id(ex, options.shard) : options.run_id;
+    const std::vector<std::size_t> mine = shard_runs(ex.runs.size(), options.shard);
+    std::cout << "# " << ex.name << (options.shard.whole() ? "" : " shard " + options.shard.str()) << ": "
+              << mine.size() << " of " << ex.runs.size() << " runs -> " << options.results_root << "/" << ex.name
+              << "/" << run_id << "\n";
+    for (const std::size_t i : mine) std::cout << i << "\t" << ex.runs[i].id << "\n";
+    return 0;
+  }
   const RunnerSummary s = run_experiment(ex, options);
   std::cout << s.table_markdown << "\n";
   std::cerr << ex.name << ": " << s.succeeded << " ran, " << s.skipped << " already done, " << s.failed

@@ -11,7 +11,8 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev libceres-dev libpcl-dev libcgal-dev
-  nlohmann-json3-dev libyaml-cpp-dev catch2
+  nlohmann-json3-dev libyaml-cpp-dev catch2 libpng-dev
+  clang libclang-rt-14-dev libomp-dev   # .ci/run: the sanitizer build and the libFuzzer targets (fuzz/)
 )
 echo "== installing: ${PACKAGES[*]}"
 $SUDO apt-get update -q

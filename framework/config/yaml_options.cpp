@@ -82,7 +82,10 @@ class YamlReader final : public FieldVisitor {
 
   void finish() const {
     for (auto it = node_.begin(); it != node_.end(); ++it) {
-      const std::string k = it->first.as<std::string>();
+      if (!it->first.IsScalar())
+        throw ConfigError((context_.empty() ? std::string("options") : context_) + ": a key is " +
+                          scalar_text(it->first) + ", not an option name");
+      const std::string k = it->first.Scalar();
       if (!used_.count(k)) {
         std::string known;
         for (const std::string& n : names_) known += (known.empty() ? "" : ", ") + n;

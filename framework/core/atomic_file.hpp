@@ -18,4 +18,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 std::string temporary_path_for(const std::string& path);
 void commit_temporary(const std::string& temporary, const std::string& path);
 
+/// Removes, under `dir` (recursively), the temporary files ("<name>.tmp-<pid>") of processes that no
+/// longer run: what a killed writer left behind. A live writer's temporary is kept. Returns how many
+/// were removed; a missing `dir` is not an error.
+std::size_t remove_stale_temporaries(const std::string& dir);
+
 }  // namespace dtsl

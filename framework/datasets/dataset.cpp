@@ -204,7 +204,9 @@ Dataset build_dataset(DatasetSpec& spec, std::uint64_t seed) {
 
   d["corruptions"] = nlohmann::json::array();
   for (std::size_t i = 0; i < spec.corruptions.size(); ++i) {
-    auto& [type, corruption] = spec.corruptions[i];
+    // Not a structured binding: C++17 lambdas cannot capture those (clang refuses; gcc allows).
+    const std::string& type = spec.corruptions[i].first;
+    auto& corruption = spec.corruptions[i].second;
     std::mt19937_64 rng(dataset_rng());
     const std::size_t before = cloud.size();
     named([&] {

@@ -6,16 +6,20 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "framework/core/types.hpp"
 
 namespace dtsl::io_detail {
 
-TriangleMesh read_ply(const std::string& path);
-TriangleMesh read_obj(const std::string& path);
-TriangleMesh read_off(const std::string& path);
-TriangleMesh read_xyz(const std::string& path);
+// Readers parse the whole content `text` of the file `path` (which only names it in messages); io.cpp
+// loads it with load_file(). Taking the bytes rather than the path lets the fuzz targets (fuzz/) feed
+// them straight from memory.
+TriangleMesh read_ply(const std::string& path, std::string_view text);
+TriangleMesh read_obj(const std::string& path, std::string_view text);
+TriangleMesh read_off(const std::string& path, std::string_view text);
+TriangleMesh read_xyz(const std::string& path, std::string_view text);
 
 // `normals` is empty or one per vertex; `faces` is empty for a point cloud.
 void write_ply(const std::string& path, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals,

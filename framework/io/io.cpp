@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/io/file_buffer.hpp"
 #include "framework/io/formats.hpp"
 #include "framework/io/pcd_io.hpp"
 
@@ -29,10 +30,10 @@ Format format_of(const std::string& path) {
 
 TriangleMesh read_any(const std::string& path, Format format) {
   switch (format) {
-    case Format::ply: return io_detail::read_ply(path);
-    case Format::obj: return io_detail::read_obj(path);
-    case Format::off: return io_detail::read_off(path);
-    case Format::xyz: return io_detail::read_xyz(path);
+    case Format::ply: return io_detail::read_ply(path, io_detail::load_file(path));
+    case Format::obj: return io_detail::read_obj(path, io_detail::load_file(path));
+    case Format::off: return io_detail::read_off(path, io_detail::load_file(path));
+    case Format::xyz: return io_detail::read_xyz(path, io_detail::load_file(path));
     case Format::pcd: {
       PointCloud c = io_detail::read_pcd(path);
       TriangleMesh m;

@@ -10,7 +10,6 @@
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
-#include "framework/io/file_buffer.hpp"
 #include "framework/io/formats.hpp"
 #include "framework/io/text_lines.hpp"
 #include "framework/io/text_writer.hpp"
@@ -56,8 +55,7 @@ int resolve(const LineReader& in, std::string_view token, std::size_t defined, c
 
 }  // namespace
 
-TriangleMesh read_obj(const std::string& path) {
-  const std::string text = load_file(path);
+TriangleMesh read_obj(const std::string& path, std::string_view text) {
   LineReader in(path, text);
   TriangleMesh mesh;
   std::vector<Vec3> normals;

@@ -10,7 +10,6 @@
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
-#include "framework/io/file_buffer.hpp"
 #include "framework/io/formats.hpp"
 #include "framework/io/text_lines.hpp"
 #include "framework/io/text_writer.hpp"
@@ -29,8 +28,7 @@ bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(
 
 }  // namespace
 
-TriangleMesh read_off(const std::string& path) {
-  const std::string text = load_file(path);
+TriangleMesh read_off(const std::string& path, std::string_view text) {
   LineReader in(path, text);
   if (!next_content(in)) throw FileError(path, "not an OFF file: it holds only comments and blank lines");
 

@@ -20,6 +20,28 @@
 namespace dtsl::io_detail {
 namespace {
 
+// PCL's header reader (1.13) does not stop at the DATA line: it goes on reading the lines after it,
+// skipping blank ones and '#' comments, as header lines for as long as their first token (split at
+// tab, CR and space, as PCL does) begins with a keyword; those overwrite what the real header said
+// while the body still starts after DATA. A binary body that begins "# ...\nCOUNT 1 1 12222222222"
+// then makes PCL read far past its buffer (found by fuzz/fuzz_pcd). Such a file is refused here.
+void check_nothing_pcl_reads_as_header(const LineReader& data_line, std::string_view text) {
+  static const char* const keywords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE",   "TYPE", "COUNT",
+                                         "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+  LineReader in(data_line.path(), text, data_line.end_offset(), data_line.number());
+  while (in.next()) {
+    const std::string_view line = in.line();
+    if (line.empty()) continue;
+    const std::string_view first = line.substr(0, line.find_first_of("\t\r "));
+    if (!first.empty() && first[0] == '#') continue;
+    for (const char* k : keywords)
+      if (first.substr(0, std::strlen(k)) == k)
+        in.fail("the data after the DATA line begins with what PCL would read as a header line (" +
+                quoted(first) + ")");
+    return;
+  }
+}
+
 // PCL's PCD reader trusts its input: a truncated header or a count larger than the file makes it
 // crash or allocate gigabytes. So the whole file is validated here first (header fields, sizes against
 // the file size, every ascii value) and PCL only decodes files known to be well formed. Returns the
@@ -31,7 +53,17 @@ unsigned long long validate_pcd(const std::string& path, const std::string& text
   std::string types;
   long long width = -1, height = -1, points = -1;
   std::string_view data;
-  while (!data.size() && in.next()) {
+  for (std::size_t start = 0; !data.size() && in.next(); start = in.end_offset()) {
+    // PCL skips only truly empty lines and splits at tab, CR and space alone: a line that starts with
+    // a blank (even "\r" alone) or holds another control character ends its header there or splits
+    // differently, so PCL would read another header than the one checked here (fuzz/fuzz_pcd).
+    const std::string_view raw(text.data() + start, in.end_offset() - start);
+    if (raw.empty() || raw[0] == '\n') continue;
+    if (raw[0] == ' ' || raw[0] == '\t' || raw[0] == '\r')
+      in.fail("a PCD header line must not start with a blank (PCL stops reading the header there)");
+    for (const char c : in.line())
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r')
+        in.fail("control character in the PCD header (PCL would read another header than this one)");
     Tokens tok(in.line());
     std::string_view key, t;
     if (!tok.next(key) || key[0] == '#') continue;
@@ -95,8 +127,12 @@ unsigned long long validate_pcd(const std::string& path, const std::string& text
     }
   }
   if (data.empty()) throw FileError(path, "not a PCD file: the header has no DATA line", in.number());
+  check_nothing_pcl_reads_as_header(in, text);
   if (types.empty()) in.fail("PCD header lacks FIELDS, SIZE or TYPE");
   if (counts.empty()) counts.assign(names.size(), 1);
+  // A FIELDS line repeated after SIZE/TYPE/COUNT changes the number of fields (fuzz/fuzz_pcd).
+  if (sizes.size() != names.size() || types.size() != names.size() || counts.size() != names.size())
+    in.fail("FIELDS, SIZE, TYPE and COUNT must give one entry per field (a header line given twice?)");
   if (height < 0) height = 1;
   if (width < 0 || points < 0) in.fail("PCD header lacks WIDTH or POINTS");
   if (width * height != points)

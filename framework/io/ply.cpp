@@ -13,7 +13,6 @@
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
-#include "framework/io/file_buffer.hpp"
 #include "framework/io/formats.hpp"
 #include "framework/io/text_lines.hpp"
 #include "framework/io/text_writer.hpp"
@@ -429,8 +428,7 @@ void read_ascii_body(const std::string& path, std::string_view text, const Heade
 
 }  // namespace
 
-TriangleMesh read_ply(const std::string& path) {
-  const std::string text = load_file(path);
+TriangleMesh read_ply(const std::string& path, std::string_view text) {
   const Header h = parse_header(path, text);
   const Layout l = find_layout(path, h);
   check_counts_fit(path, h, text.size() - h.body_offset);

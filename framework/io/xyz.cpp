@@ -5,15 +5,13 @@
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
-#include "framework/io/file_buffer.hpp"
 #include "framework/io/formats.hpp"
 #include "framework/io/text_lines.hpp"
 #include "framework/io/text_writer.hpp"
 
 namespace dtsl::io_detail {
 
-TriangleMesh read_xyz(const std::string& path) {
-  const std::string text = load_file(path);
+TriangleMesh read_xyz(const std::string& path, std::string_view text) {
   LineReader in(path, text);
   TriangleMesh cloud;
   std::size_t per_line = 0;

@@ -57,7 +57,10 @@ std::string dump(const YAML::Node& n) {
 
 void check_keys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& context) {
   for (auto it = map.begin(); it != map.end(); ++it) {
-    const std::string k = it->first.as<std::string>();
+    if (!it->first.IsScalar())
+      throw ConfigError((context.empty() ? std::string("the top level") : context) + ": a key is a " +
+                        (it->first.IsSequence() ? "list" : it->first.IsMap() ? "map" : "null") + ", not a name");
+    const std::string k = it->first.Scalar();
     if (!allowed.count(k)) {
       std::string known;
       for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
@@ -117,6 +120,9 @@ Experiment load_experiment(const std::string& path, const std::vector<std::strin
     return parse_experiment(root, path);
   } catch (const ConfigError& e) {
     throw ConfigError(path + ": " + e.what());
+  } catch (const YAML::Exception& e) {
+    // A structure no check above foresaw: still name the file, and the place yaml-cpp reports.
+    throw ConfigError(path + ": unexpected structure: " + e.what());
   }
 }
 
@@ -193,6 +199,15 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
       ex.sweep.push_back(axis);
     }
   }
+  // A hostile or mistaken sweep (ten axes of ten values) would make the expansion below run for hours.
+  constexpr std::size_t kMaxCombinations = 1000;
+  std::size_t combinations = 1;
+  for (const SweepAxis& axis : ex.sweep) {
+    combinations *= axis.values.size();  // each factor is >= 1 and the product stays below the limit
+    if (combinations > kMaxCombinations)
+      throw ConfigError("sweep: more than " + std::to_string(kMaxCombinations) +
+                        " combinations of values; split the experiment");
+  }
   ex.resolved = root;
 
   // Expand the sweep's Cartesian product; a run names only the sweep axes that address its dataset or
@@ -207,6 +222,10 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
     } catch (const ConfigError& e) {
       throw ConfigError("sweep[" + std::to_string(a) + "].key: " + e.what());
     }
+    for (const char* list : {"datasets", "pipelines"})
+      if (!probe[list].IsSequence() || probe[list].size() != root[list].size())
+        throw ConfigError("sweep[" + std::to_string(a) + "].key: '" + ex.sweep[a].key + "' replaces the " + list +
+                          " list; sweep one of their keys");
     for (std::size_t di = 0; di < root["datasets"].size(); ++di)
       axis_dataset[a].push_back(dump(probe["datasets"][di]) != dump(root["datasets"][di]));
     for (std::size_t pi = 0; pi < root["pipelines"].size(); ++pi)

@@ -1,6 +1,7 @@
 #include "framework/pipeline/runner.hpp"
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -59,9 +60,11 @@ struct Child {
   std::chrono::steady_clock::time_point started;
 };
 
-void prepare_datasets(const Experiment& ex, const std::string& dir, bool progress) {
+void prepare_datasets(const Experiment& ex, const std::vector<std::size_t>& runs, const std::string& dir,
+                      bool progress) {
   std::set<std::string> done;
-  for (const RunSpec& run : ex.runs) {
+  for (const std::size_t index : runs) {
+    const RunSpec& run = ex.runs[index];
     if (!done.insert(run.dataset_key).second) continue;
     const std::string ddir = dir + "/datasets/" + run.dataset_key;
     if (dataset_complete(ddir)) continue;
@@ -75,21 +78,43 @@ void prepare_datasets(const Experiment& ex, const std::string& dir, bool progres
 
 }  // namespace
 
+std::string default_run_id(const Experiment& ex, const ShardSpec& shard) {
+  std::string id = config_hash(ex.resolved);
+  if (!shard.whole()) id += "-shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+  return id;
+}
+
 RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options) {
   if (options.jobs < 1 || options.jobs > 256) throw ConfigError("--jobs: must be in [1, 256]");
+  const std::vector<std::size_t> mine = shard_runs(ex.runs.size(), options.shard);
   RunnerSummary summary;
-  const std::string run_id = options.run_id.empty() ? config_hash(ex.resolved) : options.run_id;
+  const std::string run_id = options.run_id.empty() ? default_run_id(ex, options.shard) : options.run_id;
   const std::string dir = options.results_root + "/" + ex.name + "/" + run_id;
   summary.directory = dir;
-  summary.total = ex.runs.size();
+  summary.total = mine.size();
   const std::string config_text = dump_yaml(ex.resolved);
 
-  const bool existed = fs::exists(dir);
+  const bool existed = fs::exists(dir), root_existed = fs::exists(options.results_root);
   if (existed) {
     std::ifstream in(dir + "/config.yaml");
     std::string previous((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in || previous != config_text)
       throw ConfigError(dir + ": holds the results of a different configuration; choose another --run-id");
+    // Nor may one directory mix shards (merge tells shards apart by their provenance).
+    std::ifstream pin(dir + "/provenance.json");
+    json prev;
+    try {
+      if (pin) prev = json::parse(pin);
+    } catch (const json::exception&) {
+    }
+    const std::string was = prev.contains("shard") ? std::to_string(prev["shard"].value("index", 0)) + "/" +
+                                                         std::to_string(prev["shard"].value("count", 0))
+                                                   : "1/1";
+    if (pin && was != options.shard.str())
+      throw ConfigError(dir + ": holds " + (was == "1/1" ? std::string("the unsharded run") : "shard " + was) +
+                        " of this experiment, not " + (options.shard.whole() ? std::string("the unsharded run") : "shard " + options.shard.str()) +
+                        "; choose another --run-id");
+    remove_stale_temporaries(dir);  // what a killed sweep was writing: its runs are redone below
   }
   try {
     fs::create_directories(dir + "/runs");
@@ -97,25 +122,34 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
     json prov = provenance(options.command_line);
     prov["seed"] = ex.seed;
     prov["run_id"] = run_id;
+    prov["config_hash"] = config_hash(ex.resolved);
+    if (!options.shard.whole()) {
+      json ids = json::array();
+      for (const std::size_t i : mine) ids.push_back(ex.runs[i].id);
+      prov["shard"] = {{"index", options.shard.index}, {"count", options.shard.count}, {"runs", ids}};
+    }
     write_file_atomically(dir + "/provenance.json", [&](std::ostream& o) { o << prov.dump(2) << "\n"; });
-    prepare_datasets(ex, dir, options.progress);
+    prepare_datasets(ex, mine, dir, options.progress);
   } catch (...) {
     if (!existed) {
       std::error_code ec;
       fs::remove_all(dir, ec);
-      // Remove the experiment folder too if this call made it and it is now empty.
+      // Remove the experiment folder and the results root too if this call made them and they are now
+      // empty (fs::remove leaves a non-empty folder alone).
       fs::remove(fs::path(dir).parent_path(), ec);
+      if (!root_existed) fs::remove(options.results_root, ec);
     }
     throw;
   }
 
   std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < ex.runs.size(); ++i) {
+  for (const std::size_t i : mine) {
     if (run_finished(dir + "/runs/" + ex.runs[i].id)) ++summary.skipped;
     else todo.push_back(i);
   }
   if (options.progress)
-    std::cerr << ex.name << ": " << ex.runs.size() << " runs, " << summary.skipped << " already done, writing to "
+    std::cerr << ex.name << (options.shard.whole() ? "" : " shard " + options.shard.str()) << ": " << mine.size()
+              << " runs, " << summary.skipped << " already done, writing to "
               << dir << "\n";
 
   struct sigaction sa{}, old_int{}, old_term{};
@@ -145,9 +179,14 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
       const RunSpec& run = ex.runs[index];
       const std::string run_dir = dir + "/runs/" + run.id;
       std::fflush(nullptr);
+      const pid_t parent = ::getpid();
       const pid_t pid = ::fork();
       if (pid < 0) throw Error("cannot start a run: fork failed");
       if (pid == 0) {
+        // A run dies with the sweep (even one killed by SIGKILL): an orphan would go on writing into a
+        // run folder that the sweep, started again, redoes at the same time.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(3);  // the sweep died before prctl
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
         // The libraries' own chatter (PCL prints to stdout/stderr) goes to the run's log, not the terminal.

@@ -8,12 +8,14 @@
 #include <vector>
 
 #include "framework/pipeline/experiment.hpp"
+#include "framework/pipeline/shard.hpp"
 
 namespace dtsl {
 
 struct RunnerOptions {
   std::string results_root = "results";  ///< results/<experiment>/<run_id>/
-  std::string run_id;                    ///< default: config_hash(resolved config)
+  std::string run_id;                    ///< default: default_run_id(experiment, shard)
+  ShardSpec shard;                       ///< run only this part of the run list (shard.hpp)
   int jobs = 1;                          ///< runs in parallel (child processes)
   bool progress = true;                  ///< progress lines on stderr
   std::vector<std::string> command_line;  ///< for provenance.json
@@ -24,6 +26,9 @@ struct RunnerSummary {
   std::size_t total = 0, skipped = 0, succeeded = 0, failed = 0;
   std::string table_markdown;
 };
+
+/// config_hash(resolved config), with "-shard<i>of<N>" appended for a part of a sharded experiment.
+std::string default_run_id(const Experiment& experiment, const ShardSpec& shard);
 
 /// Throws ConfigError/FileError/AlgorithmError (datasets) before any run starts; then never throws for
 /// a failed run (it is recorded). On an error before the first run, a directory this call created is

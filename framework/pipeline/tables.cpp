@@ -1,4 +1,5 @@
 #include "framework/pipeline/tables.hpp"
+#include "framework/pipeline/json_lookup.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,23 +19,9 @@ using json = nlohmann::json;
 
 namespace {
 
-const json* at(const json& j, std::initializer_list<const char*> path) {
-  const json* cur = &j;
-  for (const char* k : path) {
-    if (!cur->is_object() || !cur->contains(k)) return nullptr;
-    cur = &(*cur)[k];
-  }
-  return cur;
-}
+constexpr auto at = json_at;
 
-std::string number(const json* v, double scale, const char* fmt) {
-  if (!v || !v->is_number()) return "–";
-  const double x = v->get<double>() * scale;
-  if (!std::isfinite(x)) return "–";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
-}
+constexpr auto number = format_json_number;
 
 const json* stage_with(const json& r, const char* key, const std::string& value) {
   if (!r.contains("stages")) return nullptr;

@@ -1,0 +1,175 @@
+// Scaling benchmark (issue 7; a command, not a test): the full `dtsl` pipeline against `pcl_poisson`
+// (depth 8, ground-truth normals, so Poisson's time is a lower bound) on the same inputs — the paper-size
+// inputs (fandisk cut, the holed 6k bunny, the 25k armadillo with noise and holes) and area samples of
+// armadillo with noise at the sizes asked for — best of --repeat runs, each in a forked child so that
+// its peak memory is its own.
+//
+//   scaling_bench [--sizes 10000,100000,1000000] [--repeat 3] [--paper-size] [--no-paper-size]
+//                 [--timeout SECONDS per run]
+//
+// Output: one JSON object per (dataset, pipeline) on stdout, then a Markdown table with the per-phase
+// times of dtsl, Poisson's time, their ratio and both peak memories. Needs the libcgal-demo models
+// (scripts/fetch_data.sh).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "experiments/plugins.hpp"
+#include "framework/config/yaml_options.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
+#include "framework/datasets/dataset.hpp"
+#include "framework/pipeline/reconstructor.hpp"
+
+using namespace dtsl;
+using json = nlohmann::json;
+
+namespace {
+
+struct Input {
+  std::string name, yaml;
+};
+
+std::vector<Input> inputs(const std::vector<long>& sizes, bool paper_size) {
+  std::vector<Input> in;
+  if (paper_size) {
+    in.push_back({"fandisk_cut", "{shape: {type: cgal_model, model: fandisk}, sampler: vertices, "
+                                 "corruptions: [{type: plane_cut, normal: [0, 0, 1], offset: 0.75}]}"});
+    in.push_back({"bunny_6k_holes", "{shape: {type: cgal_model, model: bunny00}, sampler: vertices, corruptions: "
+                                    "[{type: subsample, count: 6000}, {type: holes, count: 4, radius: 0.08}]}"});
+    in.push_back({"armadillo_25k", "{shape: {type: cgal_model, model: armadillo}, sampler: vertices, corruptions: "
+                                   "[{type: noise, sigma: 0.002}, {type: holes, count: 6, radius: 0.06}]}"});
+  }
+  for (long n : sizes)
+    in.push_back({"armadillo_area_" + std::to_string(n),
+                  "{shape: {type: cgal_model, model: armadillo}, sampler: {type: area, count: " + std::to_string(n) +
+                      "}, corruptions: [{type: noise, sigma: 0.002}]}"});
+  return in;
+}
+
+/// One reconstruction in a child process: its stage times, total time and peak memory, or an error.
+json run_in_child(const std::string& pipeline, const PointCloud& cloud, int timeout) {
+  int fd[2];
+  if (pipe(fd) != 0) throw Error("scaling_bench: pipe failed");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    if (timeout > 0) alarm(timeout);  // SIGALRM ends the child: reported as "the child died (signal 14)"
+    json out;
+    try {
+      auto r = reconstructors().create(pipeline, "pipeline");
+      if (pipeline == "pcl_poisson") {
+        apply_assignment(r->options(), "depth", "8", "pcl_poisson");
+        apply_assignment(r->options(), "normals", "ground_truth", "pcl_poisson");
+      }
+      Stopwatch clock;
+      const ReconstructionResult result = r->reconstruct(cloud, RunContext{});
+      out["seconds"] = clock.seconds();
+      for (const StageRecord& s : result.stages) out["stages"][s.name] = s.seconds;
+      out["vertices"] = result.mesh.vertices.size();
+      out["peak_memory_mib"] = peak_memory_mib();
+    } catch (const std::exception& e) {
+      out["error"] = e.what();
+    }
+    const std::string text = out.dump();
+    if (write(fd[1], text.data(), text.size()) < 0) _exit(2);
+    _exit(0);
+  }
+  close(fd[1]);
+  std::string text;
+  char buf[4096];
+  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) > 0;) text.append(buf, n);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (text.empty()) return {{"error", "the child died (signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0) + ")"}};
+  return json::parse(text);
+}
+
+std::vector<long> parse_sizes(const std::string& s) {
+  std::vector<long> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(std::stol(item));
+  return out;
+}
+
+std::string fixed(const json& j, const char* key, const char* fmt = "%.2f") {
+  if (!j.contains(key) || !j[key].is_number()) return "–";
+  char b[32];
+  std::snprintf(b, sizeof b, fmt, j[key].get<double>());
+  return b;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<long> sizes = {10000, 100000, 1000000};
+  int repeat = 3, timeout = 0;
+  bool paper_size = true;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--sizes" && a + 1 < argc) sizes = parse_sizes(argv[++a]);
+    else if (arg == "--repeat" && a + 1 < argc) repeat = std::max(1, std::atoi(argv[++a]));
+    else if (arg == "--no-paper-size") paper_size = false;
+    else if (arg == "--paper-size") paper_size = true;
+    else if (arg == "--timeout" && a + 1 < argc) timeout = std::atoi(argv[++a]);
+    else {
+      std::cerr << "usage: scaling_bench [--sizes 10000,100000,1000000] [--repeat N] [--no-paper-size] "
+                   "[--timeout SECONDS]\n";
+      return 2;
+    }
+  }
+  try {
+    register_all_plugins();
+    register_dataset_plugins();
+    std::vector<json> rows;
+    for (const Input& input : inputs(sizes, paper_size)) {
+      DatasetSpec spec = parse_dataset(YAML::Load("{name: " + input.name + ", " + input.yaml.substr(1)), input.name);
+      const Dataset data = build_dataset(spec, 1);
+      json row = {{"dataset", input.name}, {"points", data.points.size()}};
+      for (const std::string pipeline : {"dtsl", "pcl_poisson"}) {
+        json best;
+        for (int r = 0; r < repeat; ++r) {
+          json run = run_in_child(pipeline, data.points, timeout);
+          if (run.contains("error")) {
+            best = run;
+            break;
+          }
+          if (best.is_null() || run["seconds"].get<double>() < best["seconds"].get<double>()) best = run;
+        }
+        json line = {{"dataset", input.name}, {"points", data.points.size()}, {"pipeline", pipeline},
+                     {"repeat", repeat}, {"best", best}};
+        std::cout << line.dump() << std::endl;
+        row[pipeline] = best;
+      }
+      if (row["dtsl"].contains("seconds") && row["pcl_poisson"].contains("seconds"))
+        row["ratio"] = row["dtsl"]["seconds"].get<double>() / row["pcl_poisson"]["seconds"].get<double>();
+      rows.push_back(row);
+    }
+    std::cout << "\n| dataset | points | TL (s) | MT (s) | D-Map (s) | B-Evl (s) | dtsl (s) | dtsl peak (MiB) | "
+                 "Poisson (s) | Poisson peak (MiB) | dtsl / Poisson |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | "
+                 "---: | ---: | ---: | ---: |\n";
+    for (const json& r : rows) {
+      const json& d = r["dtsl"];
+      const json stages = d.contains("stages") ? d["stages"] : json::object();
+      std::cout << "| " << r["dataset"].get<std::string>() << " | " << r["points"] << " | " << fixed(stages, "TL")
+                << " | " << fixed(stages, "MT") << " | " << fixed(stages, "D-Map") << " | " << fixed(stages, "B-Evl")
+                << " | " << (d.contains("error") ? "failed" : fixed(d, "seconds")) << " | "
+                << fixed(d, "peak_memory_mib", "%.0f") << " | " << fixed(r["pcl_poisson"], "seconds") << " | "
+                << fixed(r["pcl_poisson"], "peak_memory_mib", "%.0f") << " | " << fixed(r, "ratio") << " |\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "scaling_bench: " << e.what() << "\n";
+    return 1;
+  }
+}
