@@ -107,7 +107,9 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   std::vector<IterationRecord> history;
   std::string stop_reason;
 
+  std::vector<std::vector<double>> iterates;  // for `midway`: small (coarse T-mesh, tens of steps)
   for (int it = 0;; ++it) {
+    iterates.push_back(f.coefficients());
     IterationRecord record;
     record.iteration = it;
     Stopwatch part;
@@ -272,8 +274,10 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   if (refinement) summary["final_refinement"] = to_json(*refinement);
   summary["seconds"] = clock.seconds();
 
-  return LevelSetResult{std::move(result), std::move(evolved), std::move(history), best_iteration,
-                        std::move(stop_reason), std::move(refinement), std::move(summary)};
+  LevelSetResult out{std::move(result), std::move(evolved), std::move(history), best_iteration,
+                     std::move(stop_reason), std::move(refinement), std::move(summary), std::nullopt};
+  out.midway = TSpline(initial.shared_basis(), iterates[best_iteration / 2]);
+  return out;
 }
 
 LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options) {
@@ -316,6 +320,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
       value = value.get<double>() + result.summary["evolution_timings"][key].get<double>();
     next.best_iteration += int(result.history.size());
     next.history.insert(next.history.begin(), result.history.begin(), result.history.end());
+    next.midway = std::move(result.midway);
     record_round(next, round);
     result = std::move(next);
   }

@@ -117,6 +117,9 @@ struct LevelSetResult {
   std::string stop_reason;              ///< "at rest", "distance stalled", "iteration cap", "level set vanished"
   std::optional<RefinementReport> refinement;
   nlohmann::json summary;               ///< options, counts, timings, stop reason, final distances
+  /// The level set halfway through the first evolution (iteration best_iteration / 2 on the initial
+  /// T-mesh): the paper's Fig. 1(b) "intermediate T-spline level set", for figures.
+  std::optional<TSpline> midway;
 };
 
 /// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame), initial sphere, evolution, the

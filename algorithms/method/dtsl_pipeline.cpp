@@ -28,6 +28,7 @@ struct DtslOptions final : Options {
   bool displacement = true;
   DisplacementOptions displace;
   int flip_refinements = 2;
+  double midway_step = 0.03;
   bool sharpen = true;
   sharpen::BilateralEvolutionOptions bilateral;
 
@@ -41,6 +42,9 @@ struct DtslOptions final : Options {
     v.field("displacement", displacement, "run Phase 2, the displacement mapping (paper §3); false: MD = MI");
     PrefixedVisitor d(v, "displace_");
     displace.visit(d);
+    v.field("midway_step", midway_step,
+            "marching-cubes step of the mesh of the level set halfway through the evolution (stage mesh 'LS', "
+            "the paper's Fig. 1(b), for figures; not timed); 0: none");
     v.field("flip_refinements", flip_refinements,
             "paper §3.2: when displacement flips triangles, refine the level set one level near the flips "
             "(final refinement with the flips as focus), re-triangulate and displace again, at most this many "
@@ -54,6 +58,8 @@ struct DtslOptions final : Options {
     check_range("step_factor", step_factor, 0.01, 2.0);
     check_range("min_step", min_step, 1e-4, 0.5);
     check_range("flip_refinements", flip_refinements, 0, 10);
+    require(midway_step == 0.0 || (midway_step >= 0.005 && midway_step <= 0.5), "midway_step",
+            "must be 0 (none) or in [0.005, 0.5], got " + std::to_string(midway_step));
     require(polygonizers().contains(polygonizer), "polygonizer",
             "unknown polygonizer '" + polygonizer + "' (see `dtsl list polygonizer`)");
     checked_with_prefix("displace_", [&] { displace.check(); });
@@ -87,6 +93,17 @@ class DtslPipeline final : public Reconstructor {
     }
     tl.summary["history"] = std::move(history);
     tl.summary["stop_reason"] = level.stop_reason;
+    // The intermediate level set of the paper's Fig. 1(b), outside the timed phases.
+    if (options_.midway_step > 0.0 && level.midway) {
+      try {
+        auto cubes = polygonizers().create("marching_cubes", "polygonizer");
+        apply_assignment(cubes->options(), "step", std::to_string(options_.midway_step), "polygonizer");
+        tl.mesh = cubes->polygonize(*level.midway, points).mesh;
+        tl.mesh_label = "LS";
+      } catch (const AlgorithmError&) {
+        // A figure only: a level set the cubes cannot mesh leaves the stage without it.
+      }
+    }
     result.stages.push_back(tl);
     result.summary["nt"] = level.level_set.basis().size();
     TSpline f = level.level_set;

@@ -49,6 +49,10 @@ void check_stages(const Run& r) {
   REQUIRE(r.e_avr.count("MD"));
   REQUIRE(r.e_avr.count("MS"));
   CHECK(r.result.stages.front().summary.contains("history"));
+  // The intermediate level set (paper Fig. 1(b)) rides on the TL stage, for figures.
+  CHECK(r.result.stages.front().mesh_label == "LS");
+  REQUIRE(r.result.stages.front().mesh);
+  CHECK(!r.result.stages.front().mesh->faces.empty());
   CHECK(r.result.summary.contains("nt"));
 }
 
