@@ -91,16 +91,8 @@ TEST_CASE("same input, config and seed: identical meshes and metrics, with 1 or 
       }
       const json record = without_timings(json::parse(bytes_of(other / run / "metrics.json")));
       // The difference, if any, names the fields that changed.
-      if (other == b) {
-        CHECK(json::diff(reference, record).dump() == "[]");
-      } else {
-        // KNOWN (reported to the lead): across thread counts the method's diagnostics differ in the last
-        // bits: data_fit() (algorithms/evolution/data_fit.cpp) and onering_errors()
-        // (algorithms/displacement/displacement.cpp) sum distances with an OpenMP reduction, whose order
-        // depends on the number of threads. Reported here without failing until they sum in point order;
-        // then make this a CHECK.
-        CHECK_NOFAIL(json::diff(reference, record).dump() == "[]");
-      }
+      // Run to run and across thread counts alike (reductions sum in point order).
+      CHECK(json::diff(reference, record).dump() == "[]");
     }
   }
 }
