@@ -12,25 +12,14 @@
 #include <set>
 #include <string>
 
+#include "tests/cli/run_dtsl.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  int code;
-  std::string output;
-};
-
-Outcome dtsl(const std::string& arguments) {
-  const std::string command = std::string(DTSL_EXECUTABLE) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe);
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
-}
+using dtsl_cli_test::dtsl;
+using dtsl_cli_test::Outcome;
 
 bool contains(const std::string& haystack, const std::string& needle) { return haystack.find(needle) != std::string::npos; }
 
