@@ -7,37 +7,11 @@
 #include <cmath>
 
 #include "framework/core/implicit.hpp"
+#include "tests/support/analytic_implicit.hpp"
 
 namespace dtsl::test {
 
-class Analytic : public ImplicitFunction {
- public:
-  double evaluate(const Vec3& x, Vec3* gradient = nullptr, Mat3* hessian = nullptr) const override {
-    Vec3 g;
-    const double v = eval(x, g);
-    if (gradient) *gradient = g;
-    if (hessian) {
-      const double h = 1e-5;
-      for (int a = 0; a < 3; ++a) {
-        Vec3 gp, gm;
-        eval(x + h * Vec3::Unit(a), gp);
-        eval(x - h * Vec3::Unit(a), gm);
-        hessian->col(a) = (gp - gm) / (2 * h);
-      }
-      *hessian = 0.5 * (*hessian + hessian->transpose()).eval();
-    }
-    return v;
-  }
-  BoundingBox domain() const override {
-    BoundingBox b;
-    b.extend(Vec3::Constant(-1.5));
-    b.extend(Vec3::Constant(1.5));
-    return b;
-  }
-
- protected:
-  virtual double eval(const Vec3& x, Vec3& g) const = 0;
-};
+using Analytic = CentralDifferenceImplicit;  // cube [-1.5, 1.5]^3
 
 /// |x| - r.
 class SphereSdf final : public Analytic {

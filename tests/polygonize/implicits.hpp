@@ -10,31 +10,13 @@
 #include <vector>
 
 #include "framework/core/implicit.hpp"
+#include "tests/support/analytic_implicit.hpp"
 
 namespace dtsl::test {
 
-class AnalyticImplicit : public ImplicitFunction {
+class AnalyticImplicit : public CentralDifferenceImplicit {
  public:
-  explicit AnalyticImplicit(double half_width = 1.5) {
-    box_.extend(Vec3::Constant(-half_width));
-    box_.extend(Vec3::Constant(half_width));
-  }
-  double evaluate(const Vec3& x, Vec3* gradient = nullptr, Mat3* hessian = nullptr) const final {
-    Vec3 g;
-    const double v = eval(x, g);
-    if (gradient) *gradient = g;
-    if (hessian) {
-      const double h = 1e-5;
-      for (int a = 0; a < 3; ++a) {
-        Vec3 gp, gm;
-        eval(x + h * Vec3::Unit(a), gp);
-        eval(x - h * Vec3::Unit(a), gm);
-        hessian->col(a) = (gp - gm) / (2 * h);
-      }
-    }
-    return v;
-  }
-  BoundingBox domain() const final { return box_; }
+  explicit AnalyticImplicit(double half_width = 1.5) : CentralDifferenceImplicit(half_width) {}
 
   /// Distance from x to the zero set: exact for signed distance functions, |f|/|grad f| (first order,
   /// accurate for the small distances of a polygonization) otherwise.
@@ -48,12 +30,6 @@ class AnalyticImplicit : public ImplicitFunction {
   virtual int components() const = 0;
   /// Total area of the zero set (for "each component meshed once").
   virtual double area() const = 0;
-
- protected:
-  virtual double eval(const Vec3& x, Vec3& g) const = 0;
-
- private:
-  BoundingBox box_;
 };
 
 /// |x - c| - r.
