@@ -175,21 +175,37 @@ LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smo
   s.column = std::move(column_);
   for (int& c : s.column) c = unknown_of[c];
   s.value = std::move(value_);
-  // Columns ascending within each row (normal_equations() then visits only the lower triangle).
+  // Columns ascending within each row (normal_equations() then visits only the lower triangle). The
+  // rows of one leaf's samples come one after another with the same columns in the same order (the
+  // leaf's active control points): the sorting permutation is computed once per such run.
   {
     const int rows = int(s.row_begin.size()) - 1;
+    std::vector<int> run_start;  // rows where the column list differs from the previous row's
+    for (int r = 0; r < rows; ++r) {
+      const int a = r > 0 ? s.row_begin[r - 1] : 0, b = s.row_begin[r], size = s.row_begin[r + 1] - b;
+      if (r == 0 || b - a != size || !std::equal(s.column.begin() + a, s.column.begin() + b, s.column.begin() + b))
+        run_start.push_back(r);
+    }
+    run_start.push_back(rows);
+    const int runs = int(run_start.size()) - 1;
 #pragma omp parallel
     {
-      std::vector<std::pair<int, double>> entries;
-#pragma omp for schedule(dynamic, 256)
-      for (int r = 0; r < rows; ++r) {
-        const int begin = s.row_begin[r], end = s.row_begin[r + 1];
-        entries.clear();
-        for (int e = begin; e < end; ++e) entries.emplace_back(s.column[e], s.value[e]);
-        std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (int e = begin; e < end; ++e) {
-          s.column[e] = entries[e - begin].first;
-          s.value[e] = entries[e - begin].second;
+      std::vector<int> order, sorted_column;
+      std::vector<double> sorted_value;
+#pragma omp for schedule(dynamic, 64)
+      for (int q = 0; q < runs; ++q) {
+        const int first = s.row_begin[run_start[q]], size = s.row_begin[run_start[q] + 1] - first;
+        order.resize(size);
+        for (int i = 0; i < size; ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](int x, int y) { return s.column[first + x] < s.column[first + y]; });
+        sorted_column.resize(size);
+        for (int i = 0; i < size; ++i) sorted_column[i] = s.column[first + order[i]];
+        sorted_value.resize(size);
+        for (int r = run_start[q]; r < run_start[q + 1]; ++r) {
+          const int begin = s.row_begin[r];
+          for (int i = 0; i < size; ++i) sorted_value[i] = s.value[begin + order[i]];
+          std::copy(sorted_column.begin(), sorted_column.end(), s.column.begin() + begin);
+          std::copy(sorted_value.begin(), sorted_value.end(), s.value.begin() + begin);
         }
       }
     }

@@ -16,9 +16,11 @@ struct NormalEquations {
   Eigen::VectorXd rhs;  ///< A^T W b
 };
 
-/// Column by column with a dense accumulator (OpenMP-parallel over columns): the work is
-/// sum over rows of (entries per row)^2 / 2, with no triplet list and no sort of the whole matrix.
-/// Relies on the columns ascending within each row (as LeastSquaresBuilder::finish leaves them).
+/// Column by column with a dense accumulator (OpenMP-parallel over columns; each entry summed in row
+/// order, so the same for every thread count), no triplet list and no sort of the whole matrix. Runs
+/// of consecutive rows with the same columns (the samples of one T-mesh leaf) are summed densely and
+/// scattered once per run. Relies on the columns ascending within each row (as
+/// LeastSquaresBuilder::finish leaves them).
 NormalEquations normal_equations(const LeastSquaresSystem& system);
 
 }  // namespace dtsl

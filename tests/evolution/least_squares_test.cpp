@@ -29,8 +29,14 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   std::vector<double> c(basis->size());
   for (double& x : c) x = u(rng);
   std::vector<Vec3> x;
-  for (int k = 0; k < 40; ++k) x.emplace_back(u(rng), u(rng), u(rng));
-  std::vector<Vec3> direction(x.size(), Vec3(0.3, -0.2, 0.9));
+  // In clusters of four: consecutive points in one leaf give rows with the same columns, which
+  // finish() sorts with one permutation per run.
+  for (int k = 0; k < 10; ++k) {
+    const Vec3 centre(u(rng), u(rng), u(rng));
+    for (int i = 0; i < 4; ++i) x.push_back(centre + 1e-3 * Vec3(u(rng), u(rng), u(rng)));
+  }
+  std::vector<Vec3> direction;
+  for (std::size_t k = 0; k < x.size(); ++k) direction.push_back(Vec3(0.3, -0.2, 0.9) + 0.2 * Vec3(u(rng), u(rng), u(rng)));
   LeastSquaresBuilder rows(*basis);
   rows.add_value_rows(x, std::vector<double>(x.size(), 0.0), 2.0);
   rows.add_gradient_rows(x, direction, std::vector<double>(x.size(), 0.0), 4.0);
@@ -110,4 +116,35 @@ TEST_CASE("normal equations equal A^T W A and A^T W b", "[evolution][rows]") {
     CHECK(s.objective(u) == Approx((w.array() * (A * u - b).array().square()).sum()));
     CHECK((s.normal_residual(u) - (N * u - g)).norm() <= 1e-10 * g.norm());
   }
+}
+
+TEST_CASE("normal equations: runs of rows with the same columns, single entries and empty rows", "[evolution][rows]") {
+  // normal_equations() sums each run of rows sharing columns before scattering it: runs of every
+  // length, patterns that repeat after a break, and degenerate rows must all give A^T W A exactly.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::vector<std::vector<int>> patterns = {{0, 2, 5, 7}, {1, 2, 3}, {4}, {}, {0, 1, 2, 3, 4, 5, 6, 7}};
+  LeastSquaresSystem s;
+  s.unknowns = 8;
+  for (int run = 0; run < 30; ++run) {
+    const std::vector<int>& columns = patterns[std::size_t(run * 7 % 5)];
+    const int length = 1 + run % 6;
+    for (int r = 0; r < length; ++r) {
+      for (int c : columns) {
+        s.column.push_back(c);
+        s.value.push_back(u(rng));
+      }
+      s.row_begin.push_back(int(s.column.size()));
+      s.rhs.push_back(u(rng));
+      s.weight.push_back(0.5 + 0.5 * u(rng));
+    }
+  }
+  const Eigen::MatrixXd A = dense_rows(s);
+  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(s.weight.data(), s.rows());
+  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(s.rhs.data(), s.rows());
+  const Eigen::MatrixXd N = A.transpose() * w.asDiagonal() * A;
+  const NormalEquations ne = normal_equations(s);
+  const Eigen::MatrixXd lower = Eigen::MatrixXd(ne.lower);
+  CHECK((lower - Eigen::MatrixXd(N.triangularView<Eigen::Lower>())).cwiseAbs().maxCoeff() <= 1e-12 * N.cwiseAbs().maxCoeff());
+  CHECK((ne.rhs - A.transpose() * (w.asDiagonal() * b)).norm() <= 1e-12 * ne.rhs.norm());
 }
