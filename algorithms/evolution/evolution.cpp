@@ -9,6 +9,7 @@
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/sign_guard.hpp"
+#include "algorithms/evolution/thin_points.hpp"
 #include "algorithms/evolution/zero_set.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
@@ -280,9 +281,10 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   return out;
 }
 
-LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options) {
+LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const EvolutionOptions& options) {
   options.check();
   Stopwatch clock;
+  const std::vector<Vec3> points = thin_points(all_points, std::size_t(options.max_points));
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
   const TSpline initial = initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
@@ -345,6 +347,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
   result.summary["best_iteration"] = result.best_iteration;
   result.summary["evolution_seconds"] = result.history.back().seconds;
   result.summary["tmesh_seconds"] = tmesh_seconds;
+  result.summary["points"] = all_points.size();
+  result.summary["points_used"] = points.size();
   result.summary["seconds"] = clock.seconds();
   return result;
 }

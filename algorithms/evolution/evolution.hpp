@@ -66,6 +66,7 @@ struct EvolutionOptions final : Options {
   double initial_radius_factor = 1.1;
   double initial_box_margin = 0.1;
   bool final_refinement = true;
+  int max_points = 30000;
   TMeshOptions tmesh;
   CoarseToFineOptions fine;
   FinalRefinementOptions refinement;
@@ -122,8 +123,8 @@ struct LevelSetResult {
   std::optional<TSpline> midway;
 };
 
-/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame), initial sphere, evolution, the
-/// coarse-to-fine rounds (options.fine), final refinement. The history runs through all rounds. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
+/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame; at most options.max_points of them,
+/// thin_points.hpp), initial sphere, evolution, the coarse-to-fine rounds (options.fine), final refinement. The history runs through all rounds. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
 /// input the stage cannot handle (fewer than 4 points, all points coinciding, non-finite or outside
 /// the T-mesh's domain) or a solver failure.
 LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options);

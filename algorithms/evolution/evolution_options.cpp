@@ -113,6 +113,9 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "the initial sphere is clipped to the data's box grown by this on every side, so that it starts "
           "inside the T-mesh's domain (ours; <= 0: the sphere alone)");
   v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution ([55])");
+  v.field("max_points", max_points,
+          "the level-set stage uses at most this many data points, every k-th in input order (thin_points.hpp: "
+          "its T-mesh cannot carry more detail; displacement and sharpening use all points); 0: all");
   sync_plugins();
   PrefixedVisitor velocity_fields(v, "velocity_");
   velocity_plugin_->options().visit(velocity_fields);
@@ -145,6 +148,8 @@ void EvolutionOptions::check() const {
   check_positive("curvature_clamp", curvature_clamp);
   check_range("sign_guard", sign_guard, 0.0, 10.0);
   check_range("initial_radius_factor", initial_radius_factor, 1.0, 10.0);
+  require(max_points == 0 || max_points >= 100, "max_points",
+          "must be 0 (all points) or at least 100, got " + std::to_string(max_points));
   require(initial_box_margin < tmesh.margin, "initial_box_margin",
           "must be smaller than tmesh_margin (the initial surface must lie inside the T-mesh's domain), got " +
               std::to_string(initial_box_margin));
