@@ -4,6 +4,8 @@
 
 #include "algorithms/displacement/displacement.hpp"
 #include "algorithms/evolution/evolution.hpp"
+#include "algorithms/evolution/thin_points.hpp"
+#include "algorithms/method/tmesh_lines.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "algorithms/sharpen/bilateral_evolution.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
@@ -23,6 +25,7 @@ constexpr int kMaxStepHalvings = 3;
 struct DtslOptions final : Options {
   EvolutionOptions evolution;
   std::string polygonizer = "marching_triangulation";
+  std::string polygonizer_fallback = "marching_cubes";
   double step_factor = 0.2;  // delta = step_factor x l_T (paper §2.2: 0.2)
   double min_step = 0.004;
   bool displacement = true;
@@ -36,6 +39,9 @@ struct DtslOptions final : Options {
     PrefixedVisitor e(v, "evolution_");
     evolution.visit(e);
     v.field("polygonizer", polygonizer, "initial mesh: marching_triangulation (paper §2.2) or marching_cubes");
+    v.field("polygonizer_fallback", polygonizer_fallback,
+            "when the polygonizer fails even at the halved steps (marching triangulation on a part thinner than "
+            "its step), mesh with this one at the first step instead, and say so in the MT record; 'none': fail");
     v.field("step_factor", step_factor,
             "marching step delta = step_factor x l_T, l_T the diameter of the finest T-mesh cells (paper: 0.2)");
     v.field("min_step", min_step, "lower bound of delta (frame units): keeps the initial mesh's size bounded");
@@ -62,6 +68,8 @@ struct DtslOptions final : Options {
             "must be 0 (none) or in [0.005, 0.5], got " + std::to_string(midway_step));
     require(polygonizers().contains(polygonizer), "polygonizer",
             "unknown polygonizer '" + polygonizer + "' (see `dtsl list polygonizer`)");
+    require(polygonizer_fallback == "none" || polygonizers().contains(polygonizer_fallback), "polygonizer_fallback",
+            "unknown polygonizer '" + polygonizer_fallback + "' (see `dtsl list polygonizer`; 'none' to fail)");
     checked_with_prefix("displace_", [&] { displace.check(); });
     checked_with_prefix("bilateral_", [&] { bilateral.check(); });
   }
@@ -76,12 +84,15 @@ class DtslPipeline final : public Reconstructor {
       throw AlgorithmError("dtsl: needs at least 4 points, got " + std::to_string(cloud.size()));
     check_finite(cloud, "dtsl input");
     const std::vector<Vec3>& points = cloud.points;
+    // The level-set stage's data (evolution_max_points, thin_points.hpp); also the polygonizers' seeds,
+    // which need a point near every component, not a million of them (measured: 22 s of seeding at 1M).
+    const std::vector<Vec3> level_set_points = thin_points(points, std::size_t(options_.evolution.max_points));
     ReconstructionResult result;
 
     // TL: Phase 1, the T-spline level set (paper §2.1).
     Stopwatch clock;
     LevelSetResult level = compute_level_set(points, options_.evolution);
-    StageRecord tl{"TL", clock.seconds(), std::nullopt, "", level.summary};
+    StageRecord tl{"TL", clock.seconds(), std::nullopt, "", level.summary, std::nullopt};
     tl.summary["control_points"] = level.level_set.basis().size();
     tl.summary["iterations"] = int(level.history.size()) - 1;
     // Per-step record without the solver details (convergence plots, `dtsl report`).
@@ -98,7 +109,7 @@ class DtslPipeline final : public Reconstructor {
       try {
         auto cubes = polygonizers().create("marching_cubes", "polygonizer");
         apply_assignment(cubes->options(), "step", std::to_string(options_.midway_step), "polygonizer");
-        tl.mesh = cubes->polygonize(*level.midway, points).mesh;
+        tl.mesh = cubes->polygonize(*level.midway, level_set_points).mesh;
         tl.mesh_label = "LS";
       } catch (const AlgorithmError&) {
         // A figure only: a level set the cubes cannot mesh leaves the stage without it.
@@ -115,10 +126,12 @@ class DtslPipeline final : public Reconstructor {
     clock.restart();
     int retries = 0;
     double step = delta;
-    std::optional<PolygonizeResult> mi = polygonize(f, points, step, retries);
-    StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary)};
+    std::string fallback;
+    std::optional<PolygonizeResult> mi = polygonize(f, level_set_points, step, retries, fallback);
+    StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary), std::nullopt};
     mt.summary["step"] = step;
     mt.summary["step_halvings"] = retries;
+    if (!fallback.empty()) mt.summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
     result.stages.push_back(mt);
     result.summary["delta"] = step;
 
@@ -133,10 +146,18 @@ class DtslPipeline final : public Reconstructor {
         for (int v : dr.flipped_vertices) focus.push_back(mi->mesh.vertices[v]);
         FinalRefinementOptions refine = options_.evolution.refinement;
         refine.target_level = std::min(f.tmesh().finest_leaf_level() + 1, f.tmesh().max_depth());
-        RefinedLevelSet refined = refine_level_set(f, points, refine, options_.evolution.solver_plugin(), focus);
+        RefinedLevelSet refined = refine_level_set(f, level_set_points, refine, options_.evolution.solver_plugin(), focus);
         if (refined.report.rounds == 0) break;  // nothing left to refine near the flips
         int halvings = 0;
-        std::optional<PolygonizeResult> base = polygonize(refined.level_set, points, step, halvings);
+        std::string refined_fallback;
+        double refined_step = step;
+        std::optional<PolygonizeResult> base;
+        try {
+          base = polygonize(refined.level_set, level_set_points, refined_step, halvings, refined_fallback);
+        } catch (const AlgorithmError&) {
+          flips.push_back("polygonizer failed: refused");
+          break;
+        }
         DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, options_.displace);
         flips.push_back(again.flipped_faces.size());
         // Refinement must not change the topology Phase 1 found (a fit near a thin part can open a
@@ -148,6 +169,7 @@ class DtslPipeline final : public Reconstructor {
         }
         if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
         f = std::move(refined.level_set);
+        step = refined_step;
         mi = std::move(base);
         dr = std::move(again);
       }
@@ -156,8 +178,17 @@ class DtslPipeline final : public Reconstructor {
       result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
       result.summary["nt"] = f.basis().size();
       md = dr.mesh;
-      result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary});
+      result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
     }
+
+    // The T-mesh of the final level set (after any refinement near flips) for the figure of points +
+    // T-mesh (the paper's Fig. 1a), outside the timed phases: the leaves holding data (where the octree
+    // was refined for them) or a vertex of MI (where the zero set crosses, holes included; the two
+    // differ where Phase 1 misses the data). tmesh_lines.hpp says why not all leaves.
+    std::vector<Vec3> held = level_set_points;
+    held.insert(held.end(), mi->mesh.vertices.begin(), mi->mesh.vertices.end());
+    result.stages.front().lines = StageLines{"tmesh", "T-mesh", tmesh_edges_around(f.tmesh(), held)};
+    result.summary["tmesh_leaves"] = f.tmesh().leaf_count();
 
     // B-Evl: sharp features (paper §4), filter widths from the marching step.
     TriangleMesh ms = md;
@@ -167,7 +198,7 @@ class DtslPipeline final : public Reconstructor {
       b.delta = step;
       sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
       ms = br.mesh;
-      result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary});
+      result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary, std::nullopt});
     }
     result.mesh = ms;
     return result;
@@ -178,15 +209,26 @@ class DtslPipeline final : public Reconstructor {
   /// somewhere is reported by the polygonizer; the remedy it names is a smaller step, so halve it (a
   /// bounded number of times, never below min_step) rather than fail. `step` and `halvings` return
   /// what was used.
+  /// The mesh of f = 0 at marching step `step`, halved (at most kMaxStepHalvings times, not below
+  /// min_step) while the polygonizer fails; when it still fails, polygonizer_fallback at the first step,
+  /// with the failure's message in `fallback`. The last error when nothing meshes.
   std::optional<PolygonizeResult> polygonize(const TSpline& f, const std::vector<Vec3>& points, double& step,
-                                             int& halvings) const {
+                                             int& halvings, std::string& fallback) const {
+    const double first_step = step;
     for (;;) {
       auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
       apply_assignment(polygonizer->options(), "step", std::to_string(step), "polygonizer");
       try {
         return polygonizer->polygonize(f, points);
-      } catch (const AlgorithmError&) {
-        if (++halvings > kMaxStepHalvings || step / 2 < options_.min_step) throw;
+      } catch (const AlgorithmError& e) {
+        if (++halvings > kMaxStepHalvings || step / 2 < options_.min_step) {
+          if (options_.polygonizer_fallback == "none" || options_.polygonizer_fallback == options_.polygonizer) throw;
+          fallback = e.what();
+          step = first_step;
+          auto backup = polygonizers().create(options_.polygonizer_fallback, "polygonizer_fallback");
+          apply_assignment(backup->options(), "step", std::to_string(step), "polygonizer_fallback");
+          return backup->polygonize(f, points);
+        }
         step /= 2;
       }
     }

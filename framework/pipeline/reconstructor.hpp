@@ -3,6 +3,7 @@
 // them on the same data, measured the same way.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,13 @@
 
 namespace dtsl {
 
+/// Line geometry a stage leaves for figures, e.g. the edges of the T-mesh's cells (the paper's Fig. 1a).
+struct StageLines {
+  std::string name;   ///< the file's stem in the run directory ("tmesh" -> tmesh.obj); letters, digits, '_', '-'
+  std::string label;  ///< how figures name it ("T-mesh")
+  std::vector<std::array<Vec3, 2>> segments;  ///< end points, in the frame of the meshes
+};
+
 /// One stage of a reconstruction: its short name (the paper's Table 1 uses TL, MT, D-Map, B-Evl), wall
 /// time, the mesh it produced if any (written out and measured like the final one), and a free-form
 /// summary (counts, convergence history).
@@ -25,6 +33,7 @@ struct StageRecord {
   std::optional<TriangleMesh> mesh;
   std::string mesh_label;  ///< e.g. "MI", "MD", "MS": the column label of this stage's mesh errors
   nlohmann::json summary = nlohmann::json::object();
+  std::optional<StageLines> lines;  ///< written as <name>.obj next to the stage meshes (`l` records)
 };
 
 struct ReconstructionResult {

@@ -1,5 +1,7 @@
 #include "framework/pipeline/run_one.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "framework/config/yaml_options.hpp"
@@ -7,6 +9,7 @@
 #include "framework/core/timer.hpp"
 #include "framework/io/io.hpp"
 #include "framework/metrics/metrics.hpp"
+#include "framework/pipeline/line_obj.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 
 namespace dtsl {
@@ -61,6 +64,18 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
         js["file"] = "stage_" + label + ".ply";
         write_mesh(run_dir + "/stage_" + label + ".ply", *s.mesh);
         js["measures"] = measure_mesh(*s.mesh, dataset, nullptr, seed);
+      }
+      if (s.lines) {  // line geometry for figures (the T-mesh), atomically like the meshes
+        const std::string file = s.lines->name + ".obj";
+        const bool plain = !s.lines->name.empty() &&
+                           std::all_of(s.lines->name.begin(), s.lines->name.end(), [](unsigned char c) {
+                             return std::isalnum(c) || c == '_' || c == '-';
+                           });
+        if (!plain) throw AlgorithmError("stage " + s.name + ": line set name '" + s.lines->name + "' is not a plain file stem");
+        write_line_obj(run_dir + "/" + file, s.lines->segments, s.lines->label + " of stage " + s.name);
+        js["lines_file"] = file;
+        js["lines_label"] = s.lines->label;
+        js["lines_segments"] = s.lines->segments.size();
       }
       stages.push_back(js);
     }

@@ -11,9 +11,10 @@
 
 namespace dtsl {
 
-/// Runs `run` on `dataset`, writes final.ply and one <stage>.ply per stage mesh into `run_dir`, and
-/// returns the metrics record (status "ok", or "failed" with the error message: a failed run is a
-/// result, not a crash). Never throws for errors of the pipeline itself.
+/// Runs `run` on `dataset`, writes final.ply, one stage_<label>.ply per stage mesh and one <name>.obj per
+/// stage line set (StageLines: the T-mesh) into `run_dir`, each atomically, and returns the metrics
+/// record (status "ok", or "failed" with the error message: a failed run is a result, not a crash).
+/// Never throws for errors of the pipeline itself.
 nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
                            std::uint64_t seed, const std::string& run_dir);
 

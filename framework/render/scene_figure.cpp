@@ -13,6 +13,10 @@ void SceneOptions::check() const {
   if (supersample < 1 || supersample > 4) throw ConfigError("supersample: must be in [1, 4]");
   if (views.empty() || views.size() > 8) throw ConfigError("views: between 1 and 8 views");
   for (const ViewOptions& v : views) v.check();
+  if (!(lines.width >= 0.5 && lines.width <= 16)) throw ConfigError("lines.width: must be in [0.5, 16] pixels");
+  if (!(lines.alpha >= 0 && lines.alpha <= 1) || !(lines.hidden_alpha >= 0 && lines.hidden_alpha <= 1))
+    throw ConfigError("lines.alpha, lines.hidden_alpha: must be in [0, 1]");
+  if (!(occluder_offset >= 0 && occluder_offset < 0.5)) throw ConfigError("occluder_offset: must be in [0, 0.5)");
 }
 
 BoundingBox scene_box(const std::vector<SceneItem>& items) {
@@ -35,7 +39,13 @@ Image render_view(const SceneItem& item, const BoundingBox& box, const ViewOptio
     shading.point_radius = std::clamp(0.3 * o.panel_size / std::sqrt(static_cast<double>(item.points->size())), 0.6,
                                       shading.point_radius);
   shading.point_radius *= o.supersample;
+  if (item.occluder && box.valid()) canvas.draw_depth(*item.occluder, camera, o.occluder_offset * box.diagonal());
   if (item.mesh) canvas.draw_mesh(*item.mesh, camera, shading);
+  if (item.lines) {  // before the points, which lines do not hide (they write no depth)
+    LineStyle style = o.lines;
+    style.width *= o.supersample;
+    canvas.draw_lines(*item.lines, camera, style);
+  }
   if (item.points) canvas.draw_points(*item.points, camera, shading);
   return canvas.image().downsample(o.supersample);
 }

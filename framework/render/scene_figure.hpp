@@ -1,7 +1,9 @@
-// Pictures of point sets and meshes side by side: one column per item (e.g. input points, MI, MD, MS),
+// Pictures of point sets, meshes and line sets side by side: one column per item (e.g. input points, points
+// + T-mesh, MI, MD, MS),
 // one row per view, all items framed by the same box so the stages can be compared pixel for pixel.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -14,8 +16,12 @@ namespace dtsl::render {
 
 struct SceneItem {
   std::string label;                    ///< drawn above the column
-  const TriangleMesh* mesh = nullptr;   ///< a mesh, or
-  const std::vector<Vec3>* points = nullptr;  ///< a point set (either may be set; both are drawn)
+  const TriangleMesh* mesh = nullptr;   ///< a mesh, and/or
+  const std::vector<Vec3>* points = nullptr;  ///< a point set, and/or
+  const std::vector<std::array<Vec3, 2>>* lines = nullptr;  ///< line segments (e.g. the T-mesh's cell edges)
+  /// Drawn into the depth buffer only: hides the points and lines behind this surface (not those on it),
+  /// so a wireframe around a surface shows its front half only. Not part of scene_box().
+  const TriangleMesh* occluder = nullptr;
 };
 
 struct SceneOptions {
@@ -23,11 +29,16 @@ struct SceneOptions {
   int supersample = 2;                  ///< rendered at this factor and box-filtered (anti-aliasing)
   std::vector<ViewOptions> views = {ViewOptions{}, ViewOptions{210.0, 20.0}};
   ShadingOptions shading;
+  /// Width in output pixels (multiplied by supersample). Half-transparent warm lines: cells read as a
+  /// light grid the (blue, opaque) points stand out against.
+  LineStyle lines{{215, 95, 35}, 1.0, 0.55};
+  double occluder_offset = 0.01; ///< an occluder is pushed this fraction of the box diagonal away from the viewer
 
   void check() const;  ///< ConfigError naming the field
 };
 
-/// The box around every vertex and point of `items` (invalid if all are empty).
+/// The box around every vertex and point of `items` (invalid if all are empty). Lines do not count: they
+/// are context (cells around a surface reach beyond it) and may be clipped at the panel's border.
 BoundingBox scene_box(const std::vector<SceneItem>& items);
 
 /// One view of one item, `panel_size` square, without label.

@@ -1,9 +1,11 @@
 #include "framework/report/mesh_figures.hpp"
 #include "framework/pipeline/json_lookup.hpp"
 
+#include <array>
 #include <cstdio>
 
 #include "framework/io/io.hpp"
+#include "framework/pipeline/line_obj.hpp"
 #include "framework/render/scene_figure.hpp"
 
 namespace dtsl::report {
@@ -33,6 +35,17 @@ render::Image run_renders(const fs::path& dir, const json& record, const std::st
   }
   if (fs::exists(ddir / "points.ply")) points = read_points((ddir / "points.ply").string());
   bool staged = false;
+  // Line geometry a stage left (the T-mesh of dtsl runs): drawn over the points, the first picture of
+  // the method's stages (the paper's Fig. 1a). Old results and baselines have none.
+  std::vector<std::array<Vec3, 2>> lines;
+  std::string lines_label;
+  if (record.contains("stages") && record["stages"].is_array())
+    for (const json& st : record["stages"]) {
+      const std::string file = st.is_object() ? st.value("lines_file", std::string()) : std::string();
+      if (file.empty() || !lines_label.empty() || !fs::exists(rdir / file)) continue;
+      lines = read_line_obj((rdir / file).string());
+      lines_label = st.value("lines_label", std::string("lines"));
+    }
   if (record.contains("stages") && record["stages"].is_array())
     for (const json& st : record["stages"]) {
       const std::string file = st.is_object() ? st.value("file", std::string()) : std::string();
@@ -55,6 +68,14 @@ render::Image run_renders(const fs::path& dir, const json& record, const std::st
   std::size_t m = 0;
   if (!labels.empty() && labels[0] == "ground truth") items.push_back({labels[0], &meshes[m++], nullptr});
   if (!points.empty()) items.push_back({"points (" + std::to_string(points.size()) + ")", nullptr, &points.points});
+  if (!lines_label.empty()) {
+    // The last mesh (the result) hides the points and cells behind the surface: the cells around it
+    // seen from both sides at once are a tangle.
+    render::SceneItem t{(points.empty() ? "" : "points + ") + lines_label, nullptr, nullptr, &lines};
+    if (!points.empty()) t.points = &points.points;
+    if (m < meshes.size()) t.occluder = &meshes.back();
+    items.push_back(t);
+  }
   for (; m < meshes.size(); ++m) items.push_back({labels[m], &meshes[m], nullptr});
   if (items.empty()) return {};
   return render::render_scene(items, options.scene());

@@ -12,9 +12,10 @@
 
 namespace dtsl::report {
 
-/// Ground truth, input points (datasets/<dataset_key>/), then each stage mesh of the run (the files its
-/// record's stages name), else its final.ply; each mesh labelled with its e_avr. Empty if none exists.
-/// FileError for an unreadable mesh.
+/// Ground truth, input points (datasets/<dataset_key>/), the points with the line set a stage left (the
+/// file its record's "lines_file" names: the T-mesh of dtsl runs, hidden behind the run's last mesh),
+/// then each stage mesh of the run (the files its record's stages name), else its final.ply; each mesh
+/// labelled with its e_avr. Empty if none exists. FileError for an unreadable mesh or line file.
 render::Image run_renders(const std::filesystem::path& result_dir, const nlohmann::json& record,
                           const std::string& dataset_key, const ReportOptions& options);
 

@@ -7,6 +7,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "algorithms/method/dtsl_pipeline.hpp"
+#include "framework/core/error.hpp"
+#include "algorithms/polygonize/polygonizer.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/datasets/dataset.hpp"
 #include "framework/metrics/metrics.hpp"
@@ -110,4 +112,48 @@ TEST_CASE("dtsl: bad options and input are clear errors", "[method][errors]") {
   PointCloud two;
   two.points = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
   CHECK_THROWS_WITH(pipeline->reconstruct(two, RunContext{}), Catch::Contains("at least 4 points"));
+}
+
+namespace {
+
+/// A polygonizer that always fails, as marching triangulation does on a part thinner than its step.
+class FailingPolygonizer final : public Polygonizer {
+ public:
+  Options& options() override { return options_; }
+  PolygonizeResult polygonize(const ImplicitFunction&, const std::vector<Vec3>&) override {
+    throw AlgorithmError("test_failing: the step is too large for the surface");
+  }
+
+ private:
+  struct StepOnly final : Options {
+    double step = 0.01;
+    void visit(FieldVisitor& v) override { v.field("step", step, "marching step"); }
+    void check() const override {}
+  } options_;
+};
+
+}  // namespace
+
+TEST_CASE("dtsl: a polygonizer that fails at every step falls back to polygonizer_fallback, and says so",
+          "[method][fallback]") {
+  register_dtsl_pipeline();
+  if (!polygonizers().contains("test_failing"))
+    polygonizers().add("test_failing", "always fails (tests)", [] { return std::make_unique<FailingPolygonizer>(); });
+  const std::string sphere = "{name: s, shape: sphere, sampler: {type: area, count: 1500}}";
+  const Run r = run_dtsl(sphere, {{"polygonizer", "test_failing"}, {"sharpen", "false"}});
+  const StageRecord& mt = r.result.stages.at(1);
+  REQUIRE(mt.name == "MT");
+  REQUIRE(mt.summary.contains("fallback"));
+  CHECK(mt.summary["fallback"]["polygonizer"] == "marching_cubes");
+  CHECK(mt.summary["fallback"]["reason"].get<std::string>().find("test_failing") != std::string::npos);
+  CHECK(mt.summary["method"] == "marching_cubes");
+  CHECK(mesh_stats(r.result.mesh).watertight);
+  CHECK(r.e_avr.at("MD") < r.e_avr.at("MI"));  // the displacement still runs on the fallback's mesh
+
+  // Without a fallback the polygonizer's own error ends the run, by name.
+  CHECK_THROWS_WITH(run_dtsl(sphere, {{"polygonizer", "test_failing"}, {"polygonizer_fallback", "none"}}),
+                    Catch::Contains("test_failing"));
+  auto pipeline = reconstructors().create("dtsl", "pipeline");
+  CHECK_THROWS_WITH(apply_assignment(pipeline->options(), "polygonizer_fallback", "no_such", "dtsl"),
+                    Catch::Contains("polygonizer_fallback"));
 }
