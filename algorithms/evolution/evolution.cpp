@@ -281,10 +281,17 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   return out;
 }
 
+std::vector<Vec3> level_set_data(const std::vector<Vec3>& points, const EvolutionOptions& options) {
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!points[k].allFinite()) throw AlgorithmError("level-set stage: point " + std::to_string(k) + " is not finite");
+  const double cell = 2.0 * (1.0 + options.tmesh.margin) / double(1 << options.tmesh.max_depth);
+  return thin_points(points, std::size_t(options.max_points), cell);
+}
+
 LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const EvolutionOptions& options) {
   options.check();
   Stopwatch clock;
-  const std::vector<Vec3> points = thin_points(all_points, std::size_t(options.max_points));
+  const std::vector<Vec3> points = level_set_data(all_points, options);
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
   const TSpline initial = initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);

@@ -123,8 +123,11 @@ struct LevelSetResult {
   std::optional<TSpline> midway;
 };
 
-/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame; at most options.max_points of them,
-/// thin_points.hpp), initial sphere, evolution, the coarse-to-fine rounds (options.fine), final refinement. The history runs through all rounds. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
+/// The data points the level-set stage works on: thin_points() to options.max_points with the cell of the
+/// T-mesh's finest level. AlgorithmError naming the first non-finite point (of all of them, kept or not).
+std::vector<Vec3> level_set_data(const std::vector<Vec3>& points, const EvolutionOptions& options);
+
+/// The whole stage: T-mesh from `points` (in the [-1,1]^3 frame; level_set_data() of them), initial sphere, evolution, the coarse-to-fine rounds (options.fine), final refinement. The history runs through all rounds. ConfigError for invalid options (naming the field, with its prefix); AlgorithmError for
 /// input the stage cannot handle (fewer than 4 points, all points coinciding, non-finite or outside
 /// the T-mesh's domain) or a solver failure.
 LevelSetResult compute_level_set(const std::vector<Vec3>& points, const EvolutionOptions& options);

@@ -114,8 +114,8 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "inside the T-mesh's domain (ours; <= 0: the sphere alone)");
   v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution ([55])");
   v.field("max_points", max_points,
-          "the level-set stage uses at most this many data points, every k-th in input order (thin_points.hpp: "
-          "its T-mesh cannot carry more detail; displacement and sharpening use all points); 0: all");
+          "the level-set stage uses at most this many data points: the first few of every finest T-mesh cell "
+          "(thin_points.hpp: sparse cells keep all theirs; displacement and sharpening use all points); 0: all");
   sync_plugins();
   PrefixedVisitor velocity_fields(v, "velocity_");
   velocity_plugin_->options().visit(velocity_fields);

@@ -8,9 +8,10 @@ namespace dtsl {
 
 namespace {
 
-/// Maximal runs of consecutive rows with the same columns: the rows of the data or band samples of
-/// one T-mesh leaf share its active control points (they come out of the builder leaf by leaf), so a
-/// run is typically 4-30 rows long. Run q is rows [begin[q], begin[q + 1]).
+/// Maximal runs of consecutive rows with the same columns: an evolution step's zero-set and band
+/// samples come leaf by leaf, and the samples of one leaf share its active control points, so their
+/// rows form runs; rows in input order (the final refinement's data rows) mostly form runs of one.
+/// Run q is rows [begin[q], begin[q + 1]).
 std::vector<int> row_runs(const LeastSquaresSystem& s) {
   const int m = s.rows();
   std::vector<int> begin;

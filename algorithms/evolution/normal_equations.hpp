@@ -16,10 +16,10 @@ struct NormalEquations {
   Eigen::VectorXd rhs;  ///< A^T W b
 };
 
-/// Column by column with a dense accumulator (OpenMP-parallel over columns; each entry summed in row
-/// order, so the same for every thread count), no triplet list and no sort of the whole matrix. Runs
-/// of consecutive rows with the same columns (the samples of one T-mesh leaf) are summed densely and
-/// scattered once per run. Relies on the columns ascending within each row (as
+/// Column by column with a dense accumulator (OpenMP-parallel over columns; each entry summed over the
+/// rows of a run in order, then run by run in order, so the same for every thread count), no triplet
+/// list and no sort of the whole matrix. Runs of consecutive rows with the same columns (an evolution
+/// step's zero-set and band samples of one T-mesh leaf) are summed densely and scattered once per run. Relies on the columns ascending within each row (as
 /// LeastSquaresBuilder::finish leaves them).
 NormalEquations normal_equations(const LeastSquaresSystem& system);
 

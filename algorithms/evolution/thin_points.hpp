@@ -1,7 +1,8 @@
-// The data the level-set stage works on. Its T-mesh stops at max_depth (cells of 2^-max_depth of the
-// domain), so beyond some tens of thousands of points more data adds cost — distances, the final
-// refinement's value rows, the T-mesh's points per cell — but no detail the T-spline could carry; the
-// detail of the remaining points comes back in the displacement (paper §3), which sees all of them.
+// The data the level-set stage works on. Its T-mesh stops at max_depth, and what decides the T-mesh
+// and the fit is how many points each finest cell holds, up to a few (tmesh points_per_cell, the
+// coarse-to-fine rounds' fine_points_per_cell = 4); beyond that, more points in a cell add cost —
+// distances, the final refinement's value rows — and no detail the T-spline can carry. The detail of
+// every point comes back in the displacement (paper §3), which sees all of them.
 #pragma once
 
 #include <cstddef>
@@ -11,8 +12,11 @@
 
 namespace dtsl {
 
-/// At most `max_points` of `points` (all of them if max_points is 0 or not smaller): every k-th in input
-/// order with a fractional stride, so the choice is deterministic and spreads over the whole input.
-std::vector<Vec3> thin_points(const std::vector<Vec3>& points, std::size_t max_points);
+/// At most `max_points` of `points` (all of them if max_points is 0 or not smaller): the first c points,
+/// in input order, of every cube of side `cell` (a grid anchored at the origin), with c the largest cap
+/// that keeps the total within max_points (at least 1: with more occupied cells than max_points, one
+/// point per cell). Sparse cells keep all their points, so sampling density differences and holes
+/// survive; only the redundancy of dense cells goes. Deterministic. AlgorithmError for cell <= 0.
+std::vector<Vec3> thin_points(const std::vector<Vec3>& points, std::size_t max_points, double cell);
 
 }  // namespace dtsl

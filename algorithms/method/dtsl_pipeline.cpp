@@ -4,7 +4,6 @@
 
 #include "algorithms/displacement/displacement.hpp"
 #include "algorithms/evolution/evolution.hpp"
-#include "algorithms/evolution/thin_points.hpp"
 #include "algorithms/method/tmesh_lines.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "algorithms/sharpen/bilateral_evolution.hpp"
@@ -85,8 +84,9 @@ class DtslPipeline final : public Reconstructor {
     check_finite(cloud, "dtsl input");
     const std::vector<Vec3>& points = cloud.points;
     // The level-set stage's data (evolution_max_points, thin_points.hpp); also the polygonizers' seeds,
-    // which need a point near every component, not a million of them (measured: 22 s of seeding at 1M).
-    const std::vector<Vec3> level_set_points = thin_points(points, std::size_t(options_.evolution.max_points));
+    // which need a point near every component, not a million of them (22 s of marching-cubes seeding
+    // on 1M points before).
+    const std::vector<Vec3> level_set_points = level_set_data(points, options_.evolution);
     ReconstructionResult result;
 
     // TL: Phase 1, the T-spline level set (paper §2.1).
@@ -170,12 +170,21 @@ class DtslPipeline final : public Reconstructor {
         if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
         f = std::move(refined.level_set);
         step = refined_step;
+        fallback = refined_fallback;
+        retries = halvings;
         mi = std::move(base);
         dr = std::move(again);
       }
       dr.summary["flips_per_round"] = flips;
       dr.summary["control_points"] = f.basis().size();
       result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
+      // ... and MT's record describes that mesh (after an accepted round: the refined level set's).
+      nlohmann::json& mt_summary = result.stages[1].summary;
+      mt_summary = to_json(mi->summary);
+      mt_summary["step"] = step;
+      mt_summary["step_halvings"] = retries;
+      if (!fallback.empty()) mt_summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
+      result.summary["delta"] = step;
       result.summary["nt"] = f.basis().size();
       md = dr.mesh;
       result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
@@ -205,13 +214,11 @@ class DtslPipeline final : public Reconstructor {
   }
 
  private:
-  /// The initial mesh at marching step `step`. A step too large for the level set's curvature
-  /// somewhere is reported by the polygonizer; the remedy it names is a smaller step, so halve it (a
-  /// bounded number of times, never below min_step) rather than fail. `step` and `halvings` return
-  /// what was used.
-  /// The mesh of f = 0 at marching step `step`, halved (at most kMaxStepHalvings times, not below
-  /// min_step) while the polygonizer fails; when it still fails, polygonizer_fallback at the first step,
-  /// with the failure's message in `fallback`. The last error when nothing meshes.
+  /// The mesh of f = 0 at marching step `step`. A step too large for the level set's curvature somewhere
+  /// is reported by the polygonizer; the remedy it names is a smaller step, so halve it (at most
+  /// kMaxStepHalvings times, never below min_step); when it still fails, polygonizer_fallback at the
+  /// first step, with the failure's message in `fallback`. `step` and `halvings` return what was used
+  /// (halvings: the attempts that failed). Both errors, by name, when nothing meshes.
   std::optional<PolygonizeResult> polygonize(const TSpline& f, const std::vector<Vec3>& points, double& step,
                                              int& halvings, std::string& fallback) const {
     const double first_step = step;
@@ -227,7 +234,11 @@ class DtslPipeline final : public Reconstructor {
           step = first_step;
           auto backup = polygonizers().create(options_.polygonizer_fallback, "polygonizer_fallback");
           apply_assignment(backup->options(), "step", std::to_string(step), "polygonizer_fallback");
-          return backup->polygonize(f, points);
+          try {
+            return backup->polygonize(f, points);
+          } catch (const AlgorithmError& again) {
+            throw AlgorithmError(fallback + "; then the fallback " + again.what());
+          }
         }
         step /= 2;
       }

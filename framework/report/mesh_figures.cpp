@@ -15,6 +15,12 @@ using json = nlohmann::json;
 
 namespace {
 
+/// A file a record names must sit in its run directory: an absolute path or one with a directory part
+/// (a hand-edited or foreign metrics.json) would read files elsewhere.
+bool plain_file_name(const std::string& file) {
+  return !file.empty() && file != "." && file != ".." && fs::path(file).filename().string() == file;
+}
+
 constexpr auto fmt = format_json_number;
 
 constexpr auto at = json_at;
@@ -42,14 +48,14 @@ render::Image run_renders(const fs::path& dir, const json& record, const std::st
   if (record.contains("stages") && record["stages"].is_array())
     for (const json& st : record["stages"]) {
       const std::string file = st.is_object() ? st.value("lines_file", std::string()) : std::string();
-      if (file.empty() || !lines_label.empty() || !fs::exists(rdir / file)) continue;
+      if (!plain_file_name(file) || !lines_label.empty() || !fs::exists(rdir / file)) continue;
       lines = read_line_obj((rdir / file).string());
       lines_label = st.value("lines_label", std::string("lines"));
     }
   if (record.contains("stages") && record["stages"].is_array())
     for (const json& st : record["stages"]) {
       const std::string file = st.is_object() ? st.value("file", std::string()) : std::string();
-      if (file.empty() || !fs::exists(rdir / file) || meshes.size() >= 7) continue;
+      if (!plain_file_name(file) || !fs::exists(rdir / file) || meshes.size() >= 7) continue;
       meshes.push_back(read_mesh((rdir / file).string()));
       std::string label = st.value("mesh_label", st.value("name", std::string("?")));
       const json* e = at(st, {"measures", "point_errors", "e_avr"});

@@ -1,5 +1,10 @@
-// thin_points: the level-set stage's data at large inputs (thin_points.hpp, EvolutionOptions::max_points).
+// thin_points and level_set_data: the level-set stage's data at large inputs (thin_points.hpp,
+// EvolutionOptions::max_points).
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+#include <random>
 
 #include "algorithms/evolution/evolution.hpp"
 #include "algorithms/evolution/thin_points.hpp"
@@ -9,41 +14,75 @@ using namespace dtsl;
 
 namespace {
 
-std::vector<Vec3> numbered(int n) {
+constexpr double kCell = 0.1;
+
+/// `dense` points in the cell [0, 0.1)^3, then `sparse` points alone in cells along the x axis.
+std::vector<Vec3> dense_and_sparse(int dense, int sparse) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.001, 0.099);
   std::vector<Vec3> p;
-  for (int k = 0; k < n; ++k) p.emplace_back(double(k), 0.0, 0.0);
+  for (int k = 0; k < dense; ++k) p.emplace_back(u(rng), u(rng), u(rng));
+  for (int k = 0; k < sparse; ++k) p.emplace_back(0.35 + 0.2 * k, 0.05, 0.05);
+  std::shuffle(p.begin(), p.end(), rng);
   return p;
+}
+
+std::map<long, int> per_cell(const std::vector<Vec3>& p) {
+  std::map<long, int> count;
+  for (const Vec3& x : p) ++count[long(std::floor(x.x() / kCell)) * 1000000 + long(std::floor(x.y() / kCell)) * 1000 + long(std::floor(x.z() / kCell))];
+  return count;
 }
 
 }  // namespace
 
-TEST_CASE("thin_points: exactly max_points, evenly spread over the input order, deterministic", "[evolution][thin]") {
-  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{1000, 300}, {1001, 1000}, {12345, 100}, {50, 49}}) {
-    const std::vector<Vec3> all = numbered(n);
-    const std::vector<Vec3> kept = thin_points(all, std::size_t(m));
-    REQUIRE(int(kept.size()) == m);
-    CHECK(kept == thin_points(all, std::size_t(m)));
-    // Every kept point is an input point, in input order, and the gaps are the stride n/m (rounded).
-    const double stride = double(n) / m;
-    for (int i = 0; i < m; ++i) {
-      const double k = kept[i].x();
-      CHECK(k >= 0.0);
-      CHECK(k < n);
-      CHECK(std::abs(k - (i + 1) * stride) <= stride);  // covers the whole input, first to last
-      if (i > 0) {
-        CHECK(k > kept[i - 1].x());
-        CHECK(k - kept[i - 1].x() <= std::ceil(stride));
-      }
-    }
+TEST_CASE("thin_points: sparse cells keep all their points, dense ones are capped, within max_points",
+          "[evolution][thin]") {
+  const std::vector<Vec3> all = dense_and_sparse(1000, 50);
+  const std::vector<Vec3> kept = thin_points(all, 100, kCell);
+  CHECK(kept.size() <= 100);
+  CHECK(kept.size() >= 95);
+  CHECK(kept == thin_points(all, 100, kCell));  // deterministic
+  const std::map<long, int> before = per_cell(all), after = per_cell(kept);
+  int capped = 0;
+  for (const auto& [cell, n] : before) {
+    REQUIRE(after.count(cell));  // no cell loses all its points
+    if (n == 1) CHECK(after.at(cell) == 1);
+    else capped = after.at(cell);
+  }
+  CHECK(capped == int(kept.size()) - 50);
+  // Kept points are input points, in input order.
+  std::size_t next = 0;
+  for (const Vec3& x : kept) {
+    while (next < all.size() && all[next] != x) ++next;
+    REQUIRE(next < all.size());
+    ++next;
   }
 }
 
-TEST_CASE("thin_points: all points when max_points is 0 or not smaller", "[evolution][thin]") {
-  const std::vector<Vec3> all = numbered(500);
-  CHECK(thin_points(all, 0) == all);
-  CHECK(thin_points(all, 500) == all);
-  CHECK(thin_points(all, 10000) == all);
-  CHECK(thin_points({}, 10).empty());
+TEST_CASE("thin_points: all points when max_points is 0 or not smaller; one per cell at the least",
+          "[evolution][thin]") {
+  const std::vector<Vec3> all = dense_and_sparse(200, 20);
+  CHECK(thin_points(all, 0, kCell) == all);
+  CHECK(thin_points(all, all.size(), kCell) == all);
+  CHECK(thin_points({}, 10, kCell).empty());
+  // 21 occupied cells, room for 10: one point per cell, the cap cannot go lower.
+  const std::vector<Vec3> one_each = thin_points(all, 10, kCell);
+  CHECK(one_each.size() == 21);
+  for (const auto& [cell, n] : per_cell(one_each)) CHECK(n == 1);
+  CHECK_THROWS_WITH(thin_points(all, 10, 0.0), Catch::Contains("cell"));
+}
+
+TEST_CASE("level_set_data: thins on the T-mesh's finest cell, names a non-finite point even if dropped",
+          "[evolution][thin][bad]") {
+  EvolutionOptions o;
+  o.max_points = 100;
+  const std::vector<Vec3> all = dense_and_sparse(1000, 0);
+  const std::vector<Vec3> kept = level_set_data(all, o);
+  CHECK(kept.size() <= 100);
+  CHECK(kept.size() > 0);
+  std::vector<Vec3> bad = all;
+  bad[777] = Vec3(std::nan(""), 0.0, 0.0);
+  CHECK_THROWS_WITH(level_set_data(bad, o), Catch::Contains("point 777"));
 }
 
 TEST_CASE("evolution max_points: out-of-range values are named", "[evolution][thin][bad]") {

@@ -157,3 +157,19 @@ TEST_CASE("dtsl: a polygonizer that fails at every step falls back to polygonize
   CHECK_THROWS_WITH(apply_assignment(pipeline->options(), "polygonizer_fallback", "no_such", "dtsl"),
                     Catch::Contains("polygonizer_fallback"));
 }
+
+TEST_CASE("dtsl: evolution_max_points thins the level-set stage only; the displacement sees every point",
+          "[method][thin]") {
+  const Run r = run_dtsl("{name: s, shape: sphere, sampler: {type: area, count: 1500}}",
+                         // A coarse T-mesh (finest cells 0.16 wide), so that its cells hold several points.
+                         {{"evolution_max_points", "1000"}, {"evolution_tmesh_max_depth", "4"}, {"sharpen", "false"}});
+  const StageRecord& tl = r.result.stages.at(0);
+  CHECK(tl.summary["points"] == 1500);
+  CHECK(tl.summary["points_used"].get<int>() <= 1000);
+  CHECK(tl.summary["points_used"].get<int>() >= 500);
+  const StageRecord& dmap = r.result.stages.at(2);
+  REQUIRE(dmap.name == "D-Map");
+  CHECK(dmap.summary["points"] == 1500);
+  CHECK(mesh_stats(r.result.mesh).watertight);
+  CHECK(r.e_avr.at("MD") < r.e_avr.at("MI"));
+}
