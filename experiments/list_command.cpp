@@ -1,4 +1,5 @@
 // dtsl list [KIND]: every registered plugin with its options, defaults and docs.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 
@@ -22,9 +23,18 @@ int list_command(Args& args) {
     for (const auto& l : r->listings()) {
       std::cout << "\n" << l.name << " — " << l.summary << "\n";
       auto opts = l.default_options();
-      for (const FieldDescription& f : describe(*opts))
-        std::cout << "    " << std::left << std::setw(26) << f.name << std::setw(8) << f.type << std::setw(14)
-                  << f.value << f.doc << "\n";
+      const std::vector<FieldDescription> fields = describe(*opts);
+      // Columns as wide as this plugin's longest entry plus a space (long option names of the
+      // pipelines must not run into their type).
+      std::size_t name_w = 0, type_w = 0, value_w = 0;
+      for (const FieldDescription& f : fields) {
+        name_w = std::max(name_w, f.name.size() + 1);
+        type_w = std::max(type_w, f.type.size() + 1);
+        value_w = std::max(value_w, f.value.size() + 1);
+      }
+      for (const FieldDescription& f : fields)
+        std::cout << "    " << std::left << std::setw(int(name_w)) << f.name << std::setw(int(type_w)) << f.type
+                  << std::setw(int(value_w)) << f.value << f.doc << "\n";
     }
     std::cout << "\n";
   }

@@ -72,6 +72,18 @@ TEST_CASE("dtsl list names every registered kind and the baselines") {
   CHECK(dtsl("list nonsense").code == 2);
 }
 
+TEST_CASE("dtsl list keeps an option's name apart from its type, however long the name") {
+  const Outcome o = dtsl("list pipeline");
+  REQUIRE(o.code == 0);
+  // The dtsl pipeline's longest names (evolution_solver_preconditioner, ...) once ran into their type.
+  for (const char* name : {"evolution_distance_tolerance", "evolution_solver_preconditioner",
+                           "evolution_fine_points_per_cell", "evolution_solver_max_iterations"}) {
+    INFO(name);
+    CHECK(contains(o.output, std::string(name) + " "));
+  }
+  CHECK_FALSE(contains(o.output, "tolerancedouble"));
+}
+
 TEST_CASE("a tiny experiment runs, resumes and regenerates its tables") {
   TempDir tmp;
   const std::string config = tmp.file("tiny.yaml", kTinyExperiment);
