@@ -302,7 +302,21 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
   nlohmann::json rounds = nlohmann::json::array();
   const auto record_round = [&](const LevelSetResult& r, int round) {
+    // The solver's share of the round (CG iterations grow with the T-mesh: where the time goes, issue 7).
+    long solver_iterations = 0;
+    int unknowns = 0;
+    double solve_seconds = 0.0;
+    for (const IterationRecord& step : r.history) {
+      if (step.round != round) continue;
+      unknowns = std::max(unknowns, step.unknowns);
+      if (!step.solve) continue;
+      solver_iterations += step.solve->iterations;
+      solve_seconds += step.solve->seconds;
+    }
     rounds.push_back({{"round", round},
+                      {"unknowns", unknowns},
+                      {"solver_iterations", solver_iterations},
+                      {"solve_seconds", solve_seconds},
                       {"control_points", r.evolved.basis().size()},
                       {"finest_level", r.evolved.tmesh().finest_leaf_level()},
                       {"iterations", r.summary["iterations"]},

@@ -23,6 +23,20 @@ TEST_CASE("coarse-to-fine: a round refines near the data, fits closer, keeps gen
   INFO(fine.summary["rounds"].dump());
   REQUIRE(fine.summary["rounds"].size() == 2);
   CHECK(fine.history.back().round == 1);
+  // Each round's record counts its own steps' solver work (summed from the history of that round).
+  for (int round = 0; round < 2; ++round) {
+    long iterations = 0;
+    int unknowns = 0;
+    for (const IterationRecord& r : fine.history)
+      if (r.round == round && r.solve) {
+        iterations += r.solve->iterations;
+        unknowns = std::max(unknowns, r.unknowns);
+      }
+    CHECK(fine.summary["rounds"][round]["solver_iterations"].get<long>() == iterations);
+    CHECK(fine.summary["rounds"][round]["unknowns"].get<int>() == unknowns);
+    CHECK(iterations > 0);
+  }
+  CHECK(fine.summary["rounds"][1]["unknowns"].get<int>() > fine.summary["rounds"][0]["unknowns"].get<int>());
   CHECK(fine.level_set.tmesh().finest_leaf_level() == coarse.level_set.tmesh().finest_leaf_level() + 1);
   CHECK(fine.level_set.basis().size() > coarse.level_set.basis().size());
   const test::NewtonDistances before = test::newton_distances(coarse.level_set, points);
