@@ -249,11 +249,13 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
 
   TSpline evolved(initial.shared_basis(), best);
   std::optional<RefinementReport> refinement;
+  std::vector<double> transferred;
   TSpline result = evolved;
   if (options.final_refinement) {
     RefinedLevelSet refined = refine_level_set(evolved, points, options.refinement, solver);
     result = std::move(refined.level_set);
     refinement = std::move(refined.report);
+    transferred = std::move(refined.transferred);
   }
 
   nlohmann::json summary;
@@ -276,7 +278,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   summary["seconds"] = clock.seconds();
 
   LevelSetResult out{std::move(result), std::move(evolved), std::move(history), best_iteration,
-                     std::move(stop_reason), std::move(refinement), std::move(summary), std::nullopt};
+                     std::move(stop_reason), std::move(refinement), std::move(transferred), std::move(summary),
+                     std::nullopt};
   out.midway = TSpline(initial.shared_basis(), iterates[best_iteration / 2]);
   return out;
 }
@@ -351,6 +354,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   if (options.final_refinement) {
     RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, stage.solver_plugin());
     result.level_set = std::move(refined.level_set);
+    result.transferred = std::move(refined.transferred);
     result.summary["final_refinement"] = to_json(refined.report);
     result.refinement = std::move(refined.report);
   }

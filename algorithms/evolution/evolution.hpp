@@ -117,6 +117,8 @@ struct LevelSetResult {
   int best_iteration = 0;  ///< the iterate kept: smallest mean_distance + mean_surface_distance
   std::string stop_reason;              ///< "at rest", "distance stalled", "iteration cap", "level set vanished"
   std::optional<RefinementReport> refinement;
+  /// With the final refinement: `evolved` transferred onto level_set's T-mesh, before the fit.
+  std::vector<double> transferred;
   nlohmann::json summary;               ///< options, counts, timings, stop reason, final distances
   /// The level set halfway through the first evolution (iteration best_iteration / 2 on the initial
   /// T-mesh): the paper's Fig. 1(b) "intermediate T-spline level set", for figures.

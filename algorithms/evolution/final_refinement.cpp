@@ -86,6 +86,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree)) : level_set;
   const std::shared_ptr<const TSplineBasis> basis = f.shared_basis();
   report.control_points_after = basis->size();
+  const std::vector<double> transferred = f.coefficients();
 
   // 3. Gauss-Newton steps of the direct fit.
   const Smoothness smoothness = smoothness_from_string(options.smoothness);
@@ -132,7 +133,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   }
   report.after = data_fit(f, points);
   report.seconds = clock.seconds();
-  return {std::move(f), std::move(report)};
+  return {std::move(f), std::move(report), transferred};
 }
 
 }  // namespace dtsl

@@ -85,6 +85,9 @@ nlohmann::json to_json(const RefinementReport& r);
 struct RefinedLevelSet {
   TSpline level_set;
   RefinementReport report;
+  /// Coefficients of the input f transferred onto the refined T-mesh, before the fit (same basis as
+  /// level_set): the fit is level_set - transferred (refinement_guard.hpp scales it back).
+  std::vector<double> transferred;
 };
 
 /// Refines `level_set` near `points` (or, if `focus` is not empty, only where the zero set passes

@@ -4,6 +4,7 @@
 
 #include "algorithms/displacement/displacement.hpp"
 #include "algorithms/evolution/evolution.hpp"
+#include "algorithms/method/refinement_guard.hpp"
 #include "algorithms/method/tmesh_lines.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "algorithms/sharpen/bilateral_evolution.hpp"
@@ -30,6 +31,7 @@ struct DtslOptions final : Options {
   bool displacement = true;
   DisplacementOptions displace;
   int flip_refinements = 2;
+  bool refinement_guard = true;
   double midway_step = 0.03;
   bool sharpen = true;
   sharpen::BilateralEvolutionOptions bilateral;
@@ -44,6 +46,10 @@ struct DtslOptions final : Options {
     v.field("step_factor", step_factor,
             "marching step delta = step_factor x l_T, l_T the diameter of the finest T-mesh cells (paper: 0.2)");
     v.field("min_step", min_step, "lower bound of delta (frame units): keeps the initial mesh's size bounded");
+    v.field("refinement_guard", refinement_guard,
+            "keep the final refinement's fit only where it adds no components or handles to the evolved zero set "
+            "(refinement_guard.hpp: a fit across a part thinner than two cells severs it); else scale it back "
+            "(alpha = 1/2, 1/4, 0); the TL record says what was kept");
     v.field("displacement", displacement, "run Phase 2, the displacement mapping (paper §3); false: MD = MI");
     PrefixedVisitor d(v, "displace_");
     displace.visit(d);
@@ -115,14 +121,41 @@ class DtslPipeline final : public Reconstructor {
         // A figure only: a level set the cubes cannot mesh leaves the stage without it.
       }
     }
-    result.stages.push_back(tl);
-    result.summary["nt"] = level.level_set.basis().size();
     TSpline f = level.level_set;
 
-    // MT: the initial mesh MI (paper §2.2), step 0.2 l_T.
+    // MT's marching step, 0.2 l_T (paper §2.2), from the finest cells of the level set's T-mesh.
     const Octree& tree = f.tmesh();
     const double finest = tree.unit() * std::pow(2.0, tree.max_depth() - tree.finest_leaf_level());  // finest cell side
     const double delta = std::max(options_.min_step, options_.step_factor * std::sqrt(3.0) * finest);
+
+    // The final refinement may not add components or handles (refinement_guard.hpp). The topology is
+    // that of marching cubes at half the finest cell side: it meshes any level set (marching
+    // triangulation may need halved steps on the coarser evolved one: 3 s on the holed bunny), resolves
+    // parts of two cells, and costs a quarter of cubes at MT's step. Timed as TL.
+    if (options_.refinement_guard && !level.transferred.empty()) {
+      Stopwatch guard_clock;
+      const double cube = std::max(delta, 0.5 * finest);
+      const TopologyOf topology_of = [&](const TSpline& candidate, double) -> std::optional<ZeroSetTopology> {
+        auto cubes = polygonizers().create("marching_cubes", "polygonizer");
+        apply_assignment(cubes->options(), "step", std::to_string(cube), "polygonizer");
+        try {
+          const MeshStats s = mesh_stats(cubes->polygonize(candidate, level_set_points).mesh);
+          return ZeroSetTopology{s.components, s.genus};
+        } catch (const AlgorithmError&) {
+          return std::nullopt;
+        }
+      };
+      GuardedRefinement guarded = guard_refinement_topology(level.evolved, f, level.transferred, topology_of);
+      f = std::move(guarded.level_set);
+      tl.seconds += guard_clock.seconds();
+      tl.summary["refinement_guard"] = std::move(guarded.summary);
+      tl.summary["refinement_guard"]["seconds"] = guard_clock.seconds();
+      tl.summary["refinement_guard"]["cube_side"] = cube;
+    }
+    result.stages.push_back(tl);
+    result.summary["nt"] = f.basis().size();
+
+    // MT: the initial mesh MI (paper §2.2).
     clock.restart();
     int retries = 0;
     double step = delta;
