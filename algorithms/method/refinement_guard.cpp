@@ -19,8 +19,10 @@ nlohmann::json to_json(const std::optional<ZeroSetTopology>& t) {
 
 bool no_more_complex(const ZeroSetTopology& after, const ZeroSetTopology& before) {
   if (after.components > before.components) return false;
-  // The genus of an open mesh (a zero set cut by the domain's boundary) is NaN: components only then.
-  return !(std::isfinite(after.genus) && std::isfinite(before.genus)) || after.genus <= before.genus;
+  // The genus of an open mesh (a zero set cut by the domain's boundary) is NaN. A closed zero set may
+  // not open; an open one is compared by its components only.
+  if (!std::isfinite(before.genus)) return true;
+  return std::isfinite(after.genus) && after.genus <= before.genus;
 }
 
 GuardedRefinement guard_refinement_topology(const TSpline& evolved, const TSpline& fitted,
@@ -57,7 +59,9 @@ GuardedRefinement guard_refinement_topology(const TSpline& evolved, const TSplin
       out.level_set = std::move(candidate);
       out.alpha = alpha;
       out.summary["kept_alpha"] = alpha;
-      out.summary["reason"] = alpha == 1.0 ? "the fit keeps the evolved topology" : "the whole fit added components or handles";
+      out.summary["reason"] = alpha == 1.0 ? "the fit keeps the evolved topology"
+                                            : "the whole fit added components or handles, opened the surface or "
+                                              "could not be meshed";
       out.summary["tried"] = tried;
       return out;
     }
@@ -66,7 +70,9 @@ GuardedRefinement guard_refinement_topology(const TSpline& evolved, const TSplin
   out.level_set = TSpline(fitted.shared_basis(), transferred);
   out.alpha = 0.0;
   out.summary["kept_alpha"] = 0.0;
-  out.summary["reason"] = "every scaled fit added components or handles: the evolved level set on the refined T-mesh";
+  out.summary["reason"] =
+      "every scaled fit added components or handles, opened the surface or could not be meshed: the evolved level "
+      "set on the refined T-mesh";
   out.summary["tried"] = tried;
   return out;
 }

@@ -25,8 +25,8 @@ struct ZeroSetTopology {
   double genus = 0.0;  ///< NaN for an open mesh (metrics.hpp)
 };
 
-/// Whether `after` is no more complicated than `before`: no more components, and no larger genus where
-/// both are closed (finite genus).
+/// Whether `after` is no more complicated than `before`: no more components; if `before` is closed
+/// (finite genus), `after` closed too and of no larger genus.
 bool no_more_complex(const ZeroSetTopology& after, const ZeroSetTopology& before);
 
 /// Meshes a candidate level set and returns its topology, or nothing when it cannot be meshed. `alpha`
@@ -43,7 +43,9 @@ struct GuardedRefinement {
 /// first whose topology is no more complex than that of `evolved` (the level set before the final
 /// refinement). `transferred` is the evolved f on the refined T-mesh (same basis as `fitted`). When the
 /// evolved level set itself cannot be meshed there is no reference: the fitted one is kept, and the
-/// summary says so. Throws AlgorithmError on bases that differ or alphas outside (0, 1].
+/// summary says so. `transferred` must be ordered as `fitted`'s basis (final_refinement.cpp fits the
+/// transferred coefficients in place, so it is); AlgorithmError on a count that differs, or alphas not
+/// decreasing from 1 within (0, 1].
 GuardedRefinement guard_refinement_topology(const TSpline& evolved, const TSpline& fitted,
                                             const std::vector<double>& transferred, const TopologyOf& topology_of,
                                             const std::vector<double>& alphas = {1.0, 0.5, 0.25});

@@ -35,13 +35,15 @@ Splines splines() {
   return {TSpline(basis, c0), TSpline(basis, c1), c0};
 }
 
-/// Topology by alpha (-1: the evolved reference), counting the calls.
+/// Topology by alpha (-1: the evolved reference), recording the calls and the splines asked about.
 struct Script {
   std::map<double, std::optional<ZeroSetTopology>> by_alpha;
   std::vector<double> asked;
+  std::vector<std::vector<double>> coefficients;
   TopologyOf function() {
-    return [this](const TSpline&, double alpha) {
+    return [this](const TSpline& candidate, double alpha) {
       asked.push_back(alpha);
+      coefficients.push_back(candidate.coefficients());
       return by_alpha.at(alpha);
     };
   }
@@ -54,7 +56,9 @@ TEST_CASE("no_more_complex: components never more; genus never larger where both
   CHECK(no_more_complex({1, 0.0}, {1, 1.0}));  // a fit that closes a spurious handle is welcome
   CHECK_FALSE(no_more_complex({2, 0.0}, {1, 0.0}));
   CHECK_FALSE(no_more_complex({1, 2.0}, {1, 1.0}));
-  CHECK(no_more_complex({1, NAN}, {1, 0.0}));  // open mesh: components only
+  CHECK_FALSE(no_more_complex({1, NAN}, {1, 0.0}));  // a closed zero set may not open
+  CHECK(no_more_complex({1, 0.0}, {1, NAN}));         // an open one: components only
+  CHECK(no_more_complex({1, NAN}, {2, NAN}));
   CHECK_FALSE(no_more_complex({3, NAN}, {2, NAN}));
 }
 
@@ -84,6 +88,14 @@ TEST_CASE("refinement guard: a fit that severs a part is scaled back to the firs
     CHECK(c[i] == Approx(0.75 * s.transferred[i] + 0.25 * s.fitted.coefficients()[i]).margin(1e-15));
   CHECK(g.level_set.shared_basis() == s.fitted.shared_basis());
   CHECK(g.summary["tried"].size() == 3);
+  // What was meshed: the evolved level set, then f_1 = the fit, f_1/2, f_1/4.
+  REQUIRE(script.coefficients.size() == 4);
+  CHECK(script.coefficients[0] == s.evolved.coefficients());
+  CHECK(script.coefficients[1] == s.fitted.coefficients());
+  for (std::size_t i = 0; i < c.size(); i += 17) {
+    CHECK(script.coefficients[2][i] == Approx(0.5 * (s.transferred[i] + s.fitted.coefficients()[i])).margin(1e-15));
+    CHECK(script.coefficients[3][i] == Approx(c[i]).margin(1e-15));
+  }
 }
 
 TEST_CASE("refinement guard: every scaled fit worse, or unmeshable, gives the transferred level set", "[guard]") {
