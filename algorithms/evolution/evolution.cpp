@@ -327,15 +327,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                       {"mean_distance", r.summary["mean_distance"]},
                       {"seconds", r.summary["evolution_seconds"]}});
   };
-  record_round(result, 0);
-  stage.max_iterations = options.fine.max_iterations;
-  if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
-  for (int round = 1; round <= options.fine.levels; ++round) {
-    const int level = result.evolved.tmesh().finest_leaf_level() + 1;
-    if (level > options.tmesh.max_depth) break;
-    TSpline refined = refine_toward_data(result.evolved, points, level, options.fine);
-    if (refined.shared_basis() == result.evolved.shared_basis()) break;  // nothing left to split
-    LevelSetResult next = evolve_level_set(refined, points, stage);
+  // A later evolution's history continues the earlier one's (iterations, seconds, timings).
+  const auto append = [&result](LevelSetResult next, int round) {
     const int offset = result.history.back().iteration + 1;
     for (IterationRecord& r : next.history) {
       r.iteration += offset;
@@ -347,8 +340,19 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     next.best_iteration += int(result.history.size());
     next.history.insert(next.history.begin(), result.history.begin(), result.history.end());
     next.midway = std::move(result.midway);
-    record_round(next, round);
     result = std::move(next);
+  };
+  record_round(result, 0);
+  stage.max_iterations = options.fine.max_iterations;
+  if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
+  if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
+  for (int round = 1; round <= options.fine.levels; ++round) {
+    const int level = result.evolved.tmesh().finest_leaf_level() + 1;
+    if (level > options.tmesh.max_depth) break;
+    TSpline refined = refine_toward_data(result.evolved, points, level, options.fine);
+    if (refined.shared_basis() == result.evolved.shared_basis()) break;  // nothing left to split
+    append(evolve_level_set(refined, points, stage), round);
+    record_round(result, round);
   }
 
   if (options.final_refinement) {

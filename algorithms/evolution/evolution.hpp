@@ -47,6 +47,7 @@ namespace dtsl {
 /// YAML map configures the stage. A value type: copies clone the plugins.
 struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
+  std::string fine_velocity;
   std::string solver = "eigen_cg";
   double w_distance = 1.0;
   double w_smooth = 1e-3;
@@ -81,6 +82,12 @@ struct EvolutionOptions final : Options {
   /// The velocity / solver plugin named by `velocity` / `solver`, with its options (created anew
   /// with defaults when the name changed). ConfigError for an unknown name.
   Velocity& velocity_plugin();
+  /// The coarse-to-fine rounds' velocity plugin named by `fine_velocity` (its options: fine_velocity_*);
+  /// ConfigError when fine_velocity is empty (the rounds then use velocity_plugin()) or unknown.
+  Velocity& fine_velocity_plugin();
+  const Velocity& fine_velocity_plugin() const;
+  /// Evolve with a copy of `plugin` (options included), registered as `name`, from now on.
+  void use_velocity(const std::string& name, const Velocity& plugin);
   LevelSetSolver& solver_plugin();
   const Velocity& velocity_plugin() const;
   const LevelSetSolver& solver_plugin() const;
@@ -89,6 +96,8 @@ struct EvolutionOptions final : Options {
   void sync_plugins() const;
   mutable std::string velocity_name_, solver_name_;  // names the plugins below were created for
   mutable std::unique_ptr<Velocity> velocity_plugin_;
+  mutable std::string fine_velocity_name_;
+  mutable std::unique_ptr<Velocity> fine_velocity_plugin_;
   mutable std::unique_ptr<LevelSetSolver> solver_plugin_;
 };
 

@@ -1,6 +1,8 @@
 // EvolutionOptions: the stage's own fields plus, under prefixes, the options of the chosen velocity
 // and solver plugins, the T-mesh and the final refinement (evolution.hpp).
 #include "algorithms/evolution/evolution.hpp"
+
+#include <utility>
 #include "framework/config/prefixed_visitor.hpp"
 #include "framework/core/error.hpp"
 
@@ -16,6 +18,7 @@ EvolutionOptions::EvolutionOptions(const EvolutionOptions& other) : Options(othe
 EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
   if (this == &other) return *this;
   velocity = other.velocity;
+  fine_velocity = other.fine_velocity;
   solver = other.solver;
   w_distance = other.w_distance;
   w_smooth = other.w_smooth;
@@ -41,6 +44,8 @@ EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
   velocity_name_ = other.velocity_name_;
   solver_name_ = other.solver_name_;
   velocity_plugin_ = other.velocity_plugin_ ? other.velocity_plugin_->clone() : nullptr;
+  fine_velocity_name_ = other.fine_velocity_name_;
+  fine_velocity_plugin_ = other.fine_velocity_plugin_ ? other.fine_velocity_plugin_->clone() : nullptr;
   solver_plugin_ = other.solver_plugin_ ? other.solver_plugin_->clone() : nullptr;
   return *this;
 }
@@ -54,6 +59,28 @@ void EvolutionOptions::sync_plugins() const {
     solver_plugin_ = level_set_solvers().create(solver, "solver");
     solver_name_ = solver;
   }
+  if (fine_velocity.empty()) {
+    fine_velocity_plugin_.reset();
+    fine_velocity_name_.clear();
+  } else if (!fine_velocity_plugin_ || fine_velocity_name_ != fine_velocity) {
+    fine_velocity_plugin_ = velocities().create(fine_velocity, "fine_velocity");
+    fine_velocity_name_ = fine_velocity;
+  }
+}
+
+Velocity& EvolutionOptions::fine_velocity_plugin() {
+  return const_cast<Velocity&>(std::as_const(*this).fine_velocity_plugin());
+}
+const Velocity& EvolutionOptions::fine_velocity_plugin() const {
+  if (fine_velocity.empty()) throw ConfigError("fine_velocity: empty (the rounds use `velocity`)");
+  sync_plugins();
+  return *fine_velocity_plugin_;
+}
+
+void EvolutionOptions::use_velocity(const std::string& name, const Velocity& plugin) {
+  velocity = name;
+  velocity_name_ = name;
+  velocity_plugin_ = plugin.clone();
 }
 
 Velocity& EvolutionOptions::velocity_plugin() {
@@ -75,6 +102,9 @@ const LevelSetSolver& EvolutionOptions::solver_plugin() const {
 
 void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("velocity", velocity, "normal velocity plugin: distance, geodesic or distance_balloon (its options: velocity_*)");
+  v.field("fine_velocity", fine_velocity,
+          "velocity of the coarse-to-fine rounds (its options: fine_velocity_*; ours); empty: `velocity`. The "
+          "first evolution approaches the data from the enclosing sphere, the rounds start near it");
   v.field("solver", solver,
           "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (its options: solver_*); "
           "default eigen_cg: warm-started from the last c' it was the fastest in bench/phase1_bench.cpp");
@@ -119,6 +149,10 @@ void EvolutionOptions::visit(FieldVisitor& v) {
   sync_plugins();
   PrefixedVisitor velocity_fields(v, "velocity_");
   velocity_plugin_->options().visit(velocity_fields);
+  if (fine_velocity_plugin_) {
+    PrefixedVisitor fine_velocity_fields(v, "fine_velocity_");
+    fine_velocity_plugin_->options().visit(fine_velocity_fields);
+  }
   PrefixedVisitor solver_fields(v, "solver_");
   solver_plugin_->options().visit(solver_fields);
   PrefixedVisitor tmesh_fields(v, "tmesh_");
@@ -131,6 +165,8 @@ void EvolutionOptions::visit(FieldVisitor& v) {
 
 void EvolutionOptions::check() const {
   if (!velocities().contains(velocity)) velocities().create(velocity, "velocity");  // throws, listing the names
+  if (!fine_velocity.empty() && !velocities().contains(fine_velocity))
+    velocities().create(fine_velocity, "fine_velocity");
   if (!level_set_solvers().contains(solver)) level_set_solvers().create(solver, "solver");
   check_non_negative("w_distance", w_distance);
   check_non_negative("w_smooth", w_smooth);
@@ -154,6 +190,8 @@ void EvolutionOptions::check() const {
           "must be smaller than tmesh_margin (the initial surface must lie inside the T-mesh's domain), got " +
               std::to_string(initial_box_margin));
   checked_with_prefix("velocity_", [&] { velocity_plugin().options().check(); });
+  if (!fine_velocity.empty())
+    checked_with_prefix("fine_velocity_", [&] { fine_velocity_plugin().options().check(); });
   checked_with_prefix("solver_", [&] { solver_plugin().options().check(); });
   checked_with_prefix("tmesh_", [&] { tmesh.check(); });
   checked_with_prefix("fine_", [&] { fine.check(); });
