@@ -317,6 +317,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       solve_seconds += step.solve->seconds;
     }
     rounds.push_back({{"round", round},
+                      {"velocity", stage.velocity},
                       {"unknowns", unknowns},
                       {"solver_iterations", solver_iterations},
                       {"solve_seconds", solve_seconds},
@@ -363,6 +364,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     result.refinement = std::move(refined.report);
   }
   result.summary["options"] = to_json(stage);
+  result.summary["options"]["velocity"] = options.velocity;  // the stage's was the rounds' (fine_velocity)
   result.summary["options"]["final_refinement"] = options.final_refinement;
   result.summary["options"]["max_iterations"] = options.max_iterations;
   result.summary["tmesh"] = {{"control_points", result.level_set.basis().size()},

@@ -3,9 +3,12 @@
 // closer to the data than the first evolution left it, and keep the genus; refine_toward_data must
 // leave f unchanged up to the transfer's O(h^2) and split only near the data.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "algorithms/evolution/coarse_to_fine.hpp"
 #include "algorithms/evolution/evolution.hpp"
+#include "framework/config/yaml_options.hpp"
+#include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "tests/evolution/fixtures.hpp"
 
@@ -71,4 +74,50 @@ TEST_CASE("refine_toward_data: splits only near the data, f moves by much less t
   CoarseToFineOptions bad;
   bad.levels = -1;
   CHECK_THROWS_WITH(refine_toward_data(r.level_set, points, level, bad), Catch::Contains("levels"));
+}
+
+TEST_CASE("coarse-to-fine: the rounds evolve with fine_velocity and its own options", "[evolution][fine]") {
+  const std::vector<Vec3>& points = test::torus_data();
+  EvolutionOptions o = test::test_options("geodesic", "eigen_cg", 5);
+  o.tmesh.points_per_cell = 64;
+  o.final_refinement = false;
+  o.fine.levels = 1;
+  apply_assignment(o, "fine_velocity", "distance_balloon", "evolution");
+  apply_assignment(o, "fine_velocity_beta", "0.3", "evolution");
+  CHECK(to_json(o)["fine_velocity_beta"].get<double>() == 0.3);
+  CHECK(to_json(o)["velocity_lambda"].get<double>() == 1.0);  // geodesic's own options stay the first evolution's
+  const LevelSetResult r = compute_level_set(points, o);
+  REQUIRE(r.summary["rounds"].size() == 2);
+  CHECK(r.summary["rounds"][0]["velocity"] == "geodesic");
+  CHECK(r.summary["rounds"][1]["velocity"] == "distance_balloon");
+  CHECK(r.summary["options"]["velocity"] == "geodesic");
+  CHECK(r.summary["options"]["fine_velocity"] == "distance_balloon");
+  const MeshStats s = mesh_stats(test::zero_set_mesh(r.level_set, points));
+  CHECK(s.genus == 1.0);
+  CHECK(s.components == 1);
+  // A different round velocity is a different flow: the option reaches the rounds.
+  EvolutionOptions same = o;
+  apply_assignment(same, "fine_velocity", "\"\"", "evolution");  // YAML: fine_velocity: ""
+  const LevelSetResult g = compute_level_set(points, same);
+  CHECK(g.summary["rounds"][1]["velocity"] == "geodesic");
+  CHECK(g.level_set.coefficients() != r.level_set.coefficients());
+}
+
+TEST_CASE("fine_velocity: unknown names and bad options are ConfigErrors naming the key", "[evolution][fine][bad]") {
+  EvolutionOptions o;
+  const auto message = [&](const std::string& key, const std::string& value) {
+    EvolutionOptions copy = o;
+    try {
+      apply_assignment(copy, key, value, "evolution");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(message("fine_velocity", "no_such_velocity"), Catch::Contains("fine_velocity") && Catch::Contains("no_such_velocity"));
+  // Its options exist only once it is named, and are range-checked under their prefix.
+  CHECK_THAT(message("fine_velocity_beta", "0.3"), Catch::Contains("unknown key"));
+  apply_assignment(o, "fine_velocity", "distance_balloon", "evolution");
+  CHECK_THAT(message("fine_velocity_beta", "2"), Catch::Contains("fine_velocity_beta"));
+  CHECK(message("fine_velocity_beta", "0.5") == "no error");
 }
