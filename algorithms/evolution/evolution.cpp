@@ -43,9 +43,10 @@ namespace {
 /// Time spent in each part of the evolution, for the summary (where the time goes).
 struct Timings {
   double sampling = 0, velocity = 0, rows = 0, solve = 0, data_fit = 0;
+  double forming = 0;  ///< the part of `solve` forming the normal equations (solvers that report it)
   nlohmann::json json() const {
     return {{"zero_set_sampling", sampling}, {"velocity", velocity}, {"rows", rows}, {"solve", solve},
-            {"data_fit", data_fit}};
+            {"solve_normal_equations", forming}, {"data_fit", data_fit}};
   }
 };
 
@@ -220,6 +221,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
     Eigen::VectorXd update = system.restrict(last_update);  // warm start: the previous c'
     record.solve = solver.solve(system, update);
     timings.solve += part.seconds();
+    if (record.solve->details.contains("normal_equations_seconds"))
+      timings.forming += record.solve->details["normal_equations_seconds"].get<double>();
 
     {
       // How much of the prescribed motion the step realises: |A_v c' - b_v| / |b_v| over the

@@ -48,7 +48,7 @@ nlohmann::json to_json(const RefinementReport& r) {
 
 RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
                                  const FinalRefinementOptions& options, LevelSetSolver& solver,
-                                 const std::vector<Vec3>& focus) {
+                                 const std::vector<Vec3>& focus, WhenNothingToSplit unsplit) {
   options.check();
   if (points.empty()) throw AlgorithmError("final refinement: no data points");
   Stopwatch clock;
@@ -80,6 +80,12 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     tree = refine_octree(tree, split, balance);
     report.leaves_split += int(split.size());
     ++report.rounds;
+  }
+
+  if (report.rounds == 0 && unsplit == WhenNothingToSplit::skip_fit) {
+    report.after = report.before;
+    report.seconds = clock.seconds();
+    return {level_set, std::move(report), level_set.coefficients()};
   }
 
   // 2. Transfer f onto the refined T-mesh.

@@ -90,11 +90,17 @@ struct RefinedLevelSet {
   std::vector<double> transferred;
 };
 
+/// What refine_level_set does when no leaf is to be split: fit on the T-mesh as it is (the final
+/// refinement: the fit still helps), or return the input unchanged with report.rounds == 0 (a caller
+/// that wants refinement only, like the flip fallback of D-Map, saves the fit it would discard).
+enum class WhenNothingToSplit { fit, skip_fit };
+
 /// Refines `level_set` near `points` (or, if `focus` is not empty, only where the zero set passes
 /// within data_reach leaf sides of a focus point) and fits it to `points`. ConfigError for invalid
 /// options; AlgorithmError for no points or a solver failure.
 RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
                                  const FinalRefinementOptions& options, LevelSetSolver& solver,
-                                 const std::vector<Vec3>& focus = {});
+                                 const std::vector<Vec3>& focus = {},
+                                 WhenNothingToSplit unsplit = WhenNothingToSplit::fit);
 
 }  // namespace dtsl

@@ -190,25 +190,33 @@ class DtslPipeline final : public Reconstructor {
     if (options_.displacement) {
       clock.restart();
       DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
-      nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()});
+      nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), flip_seconds = nlohmann::json::array();
       for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
         std::vector<Vec3> focus;
         for (int v : dr.flipped_vertices) focus.push_back(mi->mesh.vertices[v]);
         FinalRefinementOptions refine = options_.evolution.refinement;
         refine.target_level = std::min(f.tmesh().finest_leaf_level() + 1, f.tmesh().max_depth());
-        RefinedLevelSet refined = refine_level_set(f, level_set_points, refine, options_.evolution.solver_plugin(), focus);
+        Stopwatch part;
+        RefinedLevelSet refined = refine_level_set(f, level_set_points, refine, options_.evolution.solver_plugin(), focus,
+                                                   WhenNothingToSplit::skip_fit);
+        nlohmann::json round_seconds = {{"refine", part.seconds()}};
         if (refined.report.rounds == 0) break;  // nothing left to refine near the flips
         int halvings = 0;
         std::string refined_fallback;
         double refined_step = step;
         std::optional<PolygonizeResult> base;
         try {
+          part.restart();
           base = polygonize(refined.level_set, level_set_points, refined_step, halvings, refined_fallback);
+          round_seconds["polygonize"] = part.seconds();
         } catch (const AlgorithmError&) {
           flips.push_back("polygonizer failed: refused");
           break;
         }
+        part.restart();
         DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, options_.displace);
+        round_seconds["displace"] = part.seconds();
+        flip_seconds.push_back(round_seconds);  // where D-Map's time goes (issue 7)
         flips.push_back(again.flipped_faces.size());
         // Refinement must not change the topology Phase 1 found (a fit near a thin part can open a
         // spurious handle): such a round is refused and the loop ends.
@@ -226,6 +234,7 @@ class DtslPipeline final : public Reconstructor {
         dr = std::move(again);
       }
       dr.summary["flips_per_round"] = flips;
+      dr.summary["refinement_round_seconds"] = flip_seconds;
       dr.summary["control_points"] = f.basis().size();
       result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
       // ... and MT's record describes that mesh (after an accepted round: the refined level set's).

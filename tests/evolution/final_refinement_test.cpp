@@ -97,6 +97,33 @@ TEST_CASE("final refinement: focus points refine only near them (Phase 2 flips)"
   CHECK(tree.leaf(tree.locate(opposite)).level < o.target_level);
 }
 
+TEST_CASE("final refinement: nothing to split fits anyway, or with skip_fit returns f unchanged", "[evolution][refine]") {
+  const LevelSetResult& evolved = evolved_torus();
+  const std::vector<Vec3>& points = test::torus_data();
+  FinalRefinementOptions o;
+  auto solver = ldlt();
+  // Refined once to the target level, the level set has nothing left to split there.
+  const RefinedLevelSet once = refine_level_set(evolved.level_set, points, o, *solver);
+  REQUIRE(once.report.rounds >= 1);
+  o.target_level = once.report.target_level;
+  const RefinedLevelSet fitted = refine_level_set(once.level_set, points, o, *solver);
+  CHECK(fitted.report.rounds == 0);
+  CHECK(fitted.report.solves.size() == 1);  // the default: the fit still runs
+  CHECK(fitted.level_set.coefficients() != once.level_set.coefficients());
+  const RefinedLevelSet skipped =
+      refine_level_set(once.level_set, points, o, *solver, {}, WhenNothingToSplit::skip_fit);
+  CHECK(skipped.report.rounds == 0);
+  CHECK(skipped.report.solves.empty());
+  CHECK(skipped.level_set.coefficients() == once.level_set.coefficients());
+  CHECK(skipped.level_set.shared_basis() == once.level_set.shared_basis());
+  CHECK(skipped.transferred == once.level_set.coefficients());
+  // With skip_fit and something to split, it refines and fits as always.
+  const RefinedLevelSet refined =
+      refine_level_set(evolved.level_set, points, FinalRefinementOptions{}, *solver, {}, WhenNothingToSplit::skip_fit);
+  CHECK(refined.report.rounds == once.report.rounds);
+  CHECK(refined.level_set.coefficients() == once.level_set.coefficients());
+}
+
 TEST_CASE("final refinement: options are checked, no points is an error", "[evolution][refine][bad]") {
   const LevelSetResult& evolved = evolved_torus();
   auto solver = ldlt();
