@@ -16,6 +16,7 @@ namespace dtsl {
 struct MetricsOptions final : Options {
   int samples = 100000;            ///< area-uniform samples on result and ground truth each
   double fscore_tau_ratio = 0.005;  ///< F-score threshold as a fraction of the truth's bbox diagonal
+  bool stage_surfaces = false;      ///< compare every stage's mesh with the truth too, not only the result
 
   void visit(FieldVisitor& v) override;
   void check() const override;

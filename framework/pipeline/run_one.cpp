@@ -63,7 +63,7 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
         js["mesh_label"] = label;
         js["file"] = "stage_" + label + ".ply";
         write_mesh(run_dir + "/stage_" + label + ".ply", *s.mesh);
-        js["measures"] = measure_mesh(*s.mesh, dataset, nullptr, seed);
+        js["measures"] = measure_mesh(*s.mesh, dataset, metrics.stage_surfaces ? &metrics : nullptr, seed);
       }
       if (s.lines) {  // line geometry for figures (the T-mesh), atomically like the meshes
         const std::string file = s.lines->name + ".obj";

@@ -50,6 +50,17 @@ bool resolve(const std::string& name, ColumnDef& out) {
              }};
       return true;
     }
+    if (base == "chamfer" || base == "accuracy" || base == "completeness") {
+      // A stage mesh's distances to the truth (metrics.stage_surfaces); "final" is the result's.
+      const std::string key = base;
+      const std::string head = base == "chamfer" ? "chamfer" : base == "accuracy" ? "acc" : "comp";
+      out = {head + " " + label + " (1e-3)", [key, label](const json& r) {
+               const json* s = stage_with(r, "mesh_label", label);
+               if (!s && label == "final") return number(at(r, {"final", "surface", key.c_str()}), 1e3, "%.2f");
+               return s ? number(at(*s, {"measures", "surface", key.c_str()}), 1e3, "%.2f") : std::string("–");
+             }};
+      return true;
+    }
     if (base == "nv") {
       out = {"nv " + label, [label](const json& r) {
                const json* s = stage_with(r, "mesh_label", label);
@@ -139,7 +150,8 @@ std::vector<std::string> default_columns() {
 std::string describe_columns() {
   return "dataset pipeline type np nv nf e_avr e_max accuracy completeness chamfer hausdorff nc fscore "
          "watertight components genus min_angle valence6 time memory normals status, and per stage: "
-         "e_avr@LABEL e_max@LABEL nv@LABEL (stage mesh label, e.g. MI MD MS), time@STAGE, summary@KEY";
+         "e_avr@LABEL e_max@LABEL nv@LABEL (stage mesh label, e.g. MI MD MS), chamfer@LABEL accuracy@LABEL "
+         "completeness@LABEL (with metrics.stage_surfaces), time@STAGE, summary@KEY";
 }
 
 void check_columns(const std::vector<std::string>& columns) {
