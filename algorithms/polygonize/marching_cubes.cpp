@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numeric>
 #include <unordered_map>
 
@@ -271,6 +272,44 @@ std::size_t boundary_loops(const TriangleMesh& mesh) {
   return loops;
 }
 
+/// The nodes whose exact value the mesh depends on, given a test that certifies f > 0 (empty: all of
+/// them, returned as an empty vector). A certified node is outside whatever its value, so only
+/// uncertified nodes (U) can be inside, and every grid edge with a vertex on it has an end in U. The
+/// vertices read the values at both ends of such edges — U and its 26 neighbours (N) — after
+/// keep_samples_off_zero, which reads each node's 6 neighbours: so U, N and their 6 neighbours are
+/// needed. Elsewhere any positive value (1) gives the same mesh, bit for bit.
+std::vector<char> needed_samples(const Grid& g, const std::function<bool(const Vec3&)>& certified_positive) {
+  if (!certified_positive) return {};
+  const std::size_t nodes = static_cast<std::size_t>(g.nodes());
+  std::vector<char> uncertain(nodes), near(nodes), needed(nodes);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        uncertain[static_cast<std::size_t>(g.index(i, j, k))] = !certified_positive(g.position(i, j, k));
+  // Gathers (each node reads its neighbours, writes itself): race-free in parallel.
+  const auto dilate = [&g](const std::vector<char>& in, std::vector<char>& out, bool cube) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          char any = 0;
+          for (int dk = -1; dk <= 1 && !any; ++dk)
+            for (int dj = -1; dj <= 1 && !any; ++dj)
+              for (int di = -1; di <= 1 && !any; ++di) {
+                if (!cube && std::abs(di) + std::abs(dj) + std::abs(dk) > 1) continue;
+                const int a = i + di, b = j + dj, c = k + dk;
+                if (a < 0 || b < 0 || c < 0 || a >= g.nx || b >= g.ny || c >= g.nz) continue;
+                any = in[static_cast<std::size_t>(g.index(a, b, c))];
+              }
+          out[static_cast<std::size_t>(g.index(i, j, k))] = any;
+        }
+  };
+  dilate(uncertain, near, true);
+  dilate(near, needed, false);
+  return needed;
+}
+
 void keep_samples_off_zero(const Grid& g, std::vector<double>& values) {
   std::vector<double> out(values);
 #pragma omp parallel for schedule(dynamic, 1)
@@ -303,14 +342,20 @@ PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec
   }
   const Grid g = make_grid(box, h, options.max_grid_nodes);
 
-  // 1. Samples (the expensive part for a T-spline: one evaluation per node, in parallel).
-  std::vector<double> values(static_cast<std::size_t>(g.nodes()));
-#pragma omp parallel for schedule(dynamic, 1)
+  // 1. Samples (the expensive part for a T-spline: one evaluation per node, in parallel), skipping
+  // the nodes whose exact value cannot matter (needed_samples).
+  const std::vector<char> needed = needed_samples(g, f.positive_certificate());
+  std::vector<double> values(static_cast<std::size_t>(g.nodes()), 1.0);
+  long evaluated = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : evaluated)
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) {
+        const std::size_t n = static_cast<std::size_t>(g.index(i, j, k));
+        if (!needed.empty() && !needed[n]) continue;
         const double v = f.value(g.position(i, j, k));
-        values[static_cast<std::size_t>(g.index(i, j, k))] = std::isfinite(v) ? v : 1.0;  // undefined: outside
+        values[n] = std::isfinite(v) ? v : 1.0;  // undefined: outside
+        ++evaluated;
       }
   const double sample_seconds = clock.seconds();
   keep_samples_off_zero(g, values);
@@ -418,7 +463,8 @@ PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec
                {"region", options.region},
                {"vertex_placement", options.vertex_placement},
                {"newton_project", options.newton_project},
-               {"sample_seconds", sample_seconds}};
+               {"sample_seconds", sample_seconds},
+               {"samples_evaluated", evaluated}};
   return result;
 }
 

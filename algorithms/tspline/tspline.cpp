@@ -6,6 +6,14 @@
 
 namespace dtsl {
 
+std::function<bool(const Vec3&)> TSpline::positive_certificate() const {
+  auto positive = std::make_shared<const std::vector<char>>(basis_->positive_leaves(coefficients_.data()));
+  return [basis = basis_, positive](const Vec3& x) {
+    if (!x.allFinite()) return false;
+    return (*positive)[std::size_t(basis->leaf_of(x))] != 0;
+  };
+}
+
 TSpline::TSpline(std::shared_ptr<const TSplineBasis> basis, std::vector<double> coefficients)
     : basis_(std::move(basis)), coefficients_(std::move(coefficients)) {
   if (!basis_) throw AlgorithmError("T-spline: no basis");

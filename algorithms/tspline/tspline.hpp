@@ -23,6 +23,9 @@ class TSpline final : public ImplicitFunction {
     return basis_->evaluate(coefficients_.data(), x, gradient, hessian);
   }
   BoundingBox domain() const override { return basis_->domain(); }
+  /// True in the leaves whose support coefficients are all positive (convex hull property of the
+  /// rational basis): there f > 0 (TSplineBasis::positive_leaves).
+  std::function<bool(const Vec3&)> positive_certificate() const override;
 
   const TSplineBasis& basis() const { return *basis_; }
   const std::shared_ptr<const TSplineBasis>& shared_basis() const { return basis_; }

@@ -345,6 +345,18 @@ void TSplineBasis::active(const Vec3& x_in, ActiveBasis& out, bool hessians) con
   }
 }
 
+std::vector<char> TSplineBasis::positive_leaves(const double* c) const {
+  std::vector<char> positive(leaves_.size(), 1);
+  for (std::size_t l = 0; l < leaves_.size(); ++l)
+    for (std::uint32_t k = leaves_[l].group_begin; k < leaves_[l].group_end && positive[l]; ++k)
+      for (std::uint32_t e = groups_[k].entry_begin; e < groups_[k + 1].entry_begin; ++e)
+        if (!(c[groups_[k].control_base + entries_[e].offset] > 0.0)) {
+          positive[l] = 0;
+          break;
+        }
+  return positive;
+}
+
 std::vector<int> TSplineBasis::support(int leaf) const {
   std::vector<int> s;
   for (std::uint32_t k = leaves_[leaf].group_begin; k < leaves_[leaf].group_end; ++k)

@@ -71,6 +71,12 @@ class TSplineBasis {
   /// with one ActiveBasis per thread.
   void active(const Vec3& x, ActiveBasis& out, bool hessians = false) const;
 
+  /// Per leaf: 1 if every coefficient of its support list is positive. f = sum c_i B_i / sum B_i is
+  /// a convex combination of them (B_i >= 0), so f > 0 everywhere in such a leaf.
+  std::vector<char> positive_leaves(const double* coefficients) const;
+  /// The leaf evaluate() uses for x (x clamped onto the domain as there).
+  int leaf_of(const Vec3& x) const { return octree_.locate(clamp(x)); }
+
   /// The support list of a leaf: the control points whose (open) support box overlaps the leaf.
   std::vector<int> support(int leaf) const;
   int support_size(int leaf) const {

@@ -3,6 +3,8 @@
 // available for any point x"). Negative inside, positive outside; grad f / |grad f| is the outward normal.
 #pragma once
 
+#include <functional>
+
 #include <Eigen/Core>
 
 #include "framework/core/types.hpp"
@@ -20,6 +22,12 @@ class ImplicitFunction {
 
   /// The box outside which f is not defined (queries there are clamped or extrapolated).
   virtual BoundingBox domain() const = 0;
+
+  /// A cheap test that is true only where f(x) > 0 for certain (false: not known), for samplers that
+  /// need f's sign far from the zero set but its value only near it (marching_cubes). Empty (the
+  /// default): no such test, every sample is evaluated. Thread-safe to call; valid while f lives
+  /// unchanged.
+  virtual std::function<bool(const Vec3&)> positive_certificate() const { return {}; }
 
   double value(const Vec3& x) const { return evaluate(x); }
   Vec3 gradient(const Vec3& x) const {
