@@ -112,8 +112,54 @@ void LeastSquaresBuilder::add_gradient_rows(const std::vector<Vec3>& y, const st
   add_rows(Kind::gradient, y, &direction, target, weight);
 }
 
+void GradientCache::fill(const std::vector<Vec3>& x, const std::vector<int>& sites) {
+  if (sites.size() != x.size()) throw AlgorithmError("gradient cache: one site number per point needed");
+  for (int s : sites)
+    if (s >= 0 && std::size_t(s) >= slot_.size())
+      throw AlgorithmError("gradient cache: site " + std::to_string(s) + " out of range [0, " +
+                           std::to_string(slot_.size()) + ")");
+  std::vector<std::size_t> missing;
+  for (std::size_t k = 0; k < sites.size(); ++k) {
+    const int s = sites[k];
+    if (s < 0) continue;
+    if (slot_[std::size_t(s)] == -1) {
+      slot_[std::size_t(s)] = -2;  // listed once even if repeated
+      missing.push_back(k);
+    }
+  }
+  const long n = long(missing.size());
+  std::vector<std::vector<int>> index(missing.size());
+  std::vector<std::vector<Vec3>> gradient(missing.size());
+#pragma omp parallel
+  {
+    ActiveBasis active;
+#pragma omp for schedule(dynamic, 64)
+    for (long m = 0; m < n; ++m) {
+      basis_.active(x[missing[std::size_t(m)]], active, false);
+      index[std::size_t(m)] = active.index;
+      gradient[std::size_t(m)] = active.gradient;
+    }
+  }
+  for (std::size_t m = 0; m < missing.size(); ++m) {
+    slot_[std::size_t(sites[missing[m]])] = int(begin_.size()) - 1;
+    index_.insert(index_.end(), index[m].begin(), index[m].end());
+    gradient_.insert(gradient_.end(), gradient[m].begin(), gradient[m].end());
+    begin_.push_back(int(index_.size()));
+  }
+}
+
+void LeastSquaresBuilder::add_gradient_rows(const std::vector<Vec3>& y, const std::vector<Vec3>& direction,
+                                            const std::vector<double>& target, double weight,
+                                            const std::vector<int>& sites, GradientCache& cache) {
+  if (direction.size() != y.size()) throw AlgorithmError("least squares: one direction per gradient row needed");
+  if (&cache.basis() != &basis_) throw AlgorithmError("least squares: the gradient cache is of another basis");
+  cache.fill(y, sites);
+  add_rows(Kind::gradient, y, &direction, target, weight, &sites, &cache);
+}
+
 void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
-                                   const std::vector<double>& target, double weight) {
+                                   const std::vector<double>& target, double weight, const std::vector<int>* sites,
+                                   const GradientCache* cache) {
   if (target.size() != x.size()) throw AlgorithmError("least squares: one target per row needed");
   if (x.empty()) return;
   const double row_weight = weight / double(x.size());
@@ -140,6 +186,17 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     ActiveBasis active;
     b.count.reserve(end - begin);
     for (long k = begin; k < end; ++k) {
+      if (cache && (*sites)[std::size_t(k)] >= 0) {  // a gradient row at a cached site
+        const int site = (*sites)[std::size_t(k)], size = cache->size(site);
+        const int* index = cache->index(site);
+        const Vec3* gradient = cache->gradient(site);
+        b.count.push_back(size);
+        for (int e = 0; e < size; ++e) {
+          b.column.push_back(index[e]);
+          b.value.push_back((*direction)[k].dot(gradient[e]));
+        }
+        continue;
+      }
       basis_.active(x[k], active, false);
       b.count.push_back(active.size());
       for (int e = 0; e < active.size(); ++e) {

@@ -72,6 +72,31 @@ struct LeastSquaresSystem {
   Eigen::VectorXd restrict(const std::vector<double>& full) const;
 };
 
+/// grad R_i at fixed sample sites of one basis, kept across calls: the evolution's band samples are the
+/// centres of sub-cells of the T-mesh's leaves (zero_set.hpp), the same points step after step while the
+/// band drifts, and a gradient row there differs from the last step's only by its direction. Site s is
+/// any number in [0, sites); the caller keeps the numbering fixed (ZeroSetSamples::band_site).
+class GradientCache {
+ public:
+  GradientCache(const TSplineBasis& basis, int sites) : basis_(basis), slot_(std::size_t(sites), -1) {}
+  const TSplineBasis& basis() const { return basis_; }
+  /// Computes the missing sites among `sites` (negative entries: not a site, skipped) at `x`, in parallel.
+  void fill(const std::vector<Vec3>& x, const std::vector<int>& sites);
+  /// The active functions of a filled site: count, their control indices and grad R_i.
+  int size(int site) const { return begin_[std::size_t(slot_[std::size_t(site)]) + 1] - begin_[std::size_t(slot_[std::size_t(site)])]; }
+  const int* index(int site) const { return &index_[std::size_t(begin_[std::size_t(slot_[std::size_t(site)])])]; }
+  const Vec3* gradient(int site) const { return &gradient_[std::size_t(begin_[std::size_t(slot_[std::size_t(site)])])]; }
+  bool has(int site) const { return slot_[std::size_t(site)] >= 0; }
+  std::size_t filled() const { return begin_.size() - 1; }
+
+ private:
+  const TSplineBasis& basis_;
+  std::vector<int> slot_;       // site -> slot, -1: not computed yet
+  std::vector<int> begin_{0};   // slot -> its entries [begin_[slot], begin_[slot + 1])
+  std::vector<int> index_;
+  std::vector<Vec3> gradient_;
+};
+
 /// Collects rows over the global control indices of a basis, then renumbers them (finish()).
 class LeastSquaresBuilder {
  public:
@@ -83,6 +108,11 @@ class LeastSquaresBuilder {
   /// One row per point: sum_i (direction[k] . grad R_i(y_k)) u_i = target[k], weight / y.size() each.
   void add_gradient_rows(const std::vector<Vec3>& y, const std::vector<Vec3>& direction,
                          const std::vector<double>& target, double weight);
+  /// The same rows, with grad R_i at the points that are sites (sites[k] >= 0) taken from `cache`
+  /// (filled where missing): the same numbers as computed afresh. The cache must be of this basis.
+  void add_gradient_rows(const std::vector<Vec3>& y, const std::vector<Vec3>& direction,
+                         const std::vector<double>& target, double weight, const std::vector<int>& sites,
+                         GradientCache& cache);
 
   /// The unknowns (control points touched by a row), the rows renumbered, and the smoothness rows
   /// over the unknowns with total weight `smoothness_weight` (spread over their rows). `edges` is
@@ -94,7 +124,8 @@ class LeastSquaresBuilder {
  private:
   enum class Kind { value, gradient };
   void add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
-                const std::vector<double>& target, double weight);
+                const std::vector<double>& target, double weight, const std::vector<int>* sites = nullptr,
+                const GradientCache* cache = nullptr);
 
   const TSplineBasis& basis_;
   std::vector<int> row_begin_{0};

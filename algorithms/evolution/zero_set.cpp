@@ -63,6 +63,7 @@ ZeroSetSamples sample_zero_set(const ImplicitFunction& f, const Octree& tmesh, c
         out.band.push_back(centre);
         out.band_gradient.push_back(g);
         out.band_cell_size.push_back(side);
+        out.band_site.push_back(l * b * b * b + k);
       }
       // Zero-set candidates.
       const double h = side / s;
@@ -89,6 +90,7 @@ ZeroSetSamples sample_zero_set(const ImplicitFunction& f, const Octree& tmesh, c
         out.band.push_back(x);
         out.band_gradient.push_back(p.gradient);
         out.band_cell_size.push_back(side);
+        out.band_site.push_back(-1);
       }
     }
   }
@@ -98,6 +100,7 @@ ZeroSetSamples sample_zero_set(const ImplicitFunction& f, const Octree& tmesh, c
     all.band.insert(all.band.end(), parts[t].band.begin(), parts[t].band.end());
     all.band_gradient.insert(all.band_gradient.end(), parts[t].band_gradient.begin(), parts[t].band_gradient.end());
     all.band_cell_size.insert(all.band_cell_size.end(), parts[t].band_cell_size.begin(), parts[t].band_cell_size.end());
+    all.band_site.insert(all.band_site.end(), parts[t].band_site.begin(), parts[t].band_site.end());
   }
   return all;
 }

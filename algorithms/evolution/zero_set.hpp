@@ -43,6 +43,9 @@ struct ZeroSetSamples {
   std::vector<Vec3> band;              ///< the y_m (the x_j included)
   std::vector<Vec3> band_gradient;     ///< grad f(y_m)
   std::vector<double> band_cell_size;  ///< leaf side at y_m
+  /// y_m's site: leaf x b^3 + sub-cell for the sub-cell centres (the same points at every call on one
+  /// T-mesh, b = band_subdivision: GradientCache), -1 for the zero-set points among the y_m.
+  std::vector<int> band_site;
 };
 
 /// Samples the zero set and band of f on the T-mesh `tmesh` (usually f's own; the final refinement

@@ -6,6 +6,8 @@
 
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/normal_equations.hpp"
+#include "algorithms/evolution/zero_set.hpp"
+#include "algorithms/tspline/tspline.hpp"
 #include "framework/core/error.hpp"
 #include "tests/evolution/fixtures.hpp"
 
@@ -72,6 +74,48 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   const std::vector<double> full = s.expand(cu, basis->size());
   for (int i = 0; i < basis->size(); ++i) CHECK(full[i] == (touched[i] ? c[i] : 0.0));
   CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(Smoothness::tikhonov, 1.0), AlgorithmError);
+}
+
+TEST_CASE("least squares: gradient rows from the band's site cache equal rows computed afresh, step after step",
+          "[evolution][rows]") {
+  auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
+  const TSpline f = quasi_interpolant(basis, [](const Vec3& x) { return x.norm() - 0.7; });
+  ZeroSetSampling sampling;
+  sampling.band_subdivision = 2;
+  sampling.band_width = 2.0;
+  const ZeroSetSamples samples = sample_zero_set(f, basis->octree(), sampling);
+  REQUIRE(samples.band_site.size() == samples.band.size());
+  int sites = 0, zero_set = 0;
+  for (int s : samples.band_site) (s >= 0 ? sites : zero_set) += 1;
+  REQUIRE(sites > 100);
+  REQUIRE(zero_set > 10);  // the zero-set points among the band: no site, computed afresh
+  GradientCache cache(*basis, basis->octree().leaf_count() * 8);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // Two "steps": the same band with new directions; the second reads every site from the cache.
+  for (int step = 0; step < 2; ++step) {
+    std::vector<Vec3> direction;
+    for (std::size_t m = 0; m < samples.band.size(); ++m) direction.push_back(Vec3(u(rng), u(rng), u(rng)));
+    const std::vector<double> target(samples.band.size(), 0.5);
+    LeastSquaresBuilder fresh(*basis), cached(*basis);
+    fresh.add_gradient_rows(samples.band, direction, target, 1.0);
+    cached.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, cache);
+    const LeastSquaresSystem a = fresh.finish(Smoothness::tikhonov, 0.1), b = cached.finish(Smoothness::tikhonov, 0.1);
+    CHECK(a.row_begin == b.row_begin);
+    CHECK(a.column == b.column);
+    CHECK(a.value == b.value);  // bit for bit
+    CHECK(a.control == b.control);
+    CHECK(cache.filled() == std::size_t(sites));
+  }
+  // A cache of another basis, or a site out of its range, is an error, not a wrong row.
+  auto other = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(300), test::test_options("distance", "eigen_ldlt").tmesh));
+  GradientCache wrong(*other, 8 * other->octree().leaf_count());
+  const std::vector<Vec3> direction(samples.band.size(), Vec3::UnitX());
+  const std::vector<double> target(samples.band.size(), 0.0);
+  LeastSquaresBuilder rows(*basis);
+  CHECK_THROWS_AS(rows.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, wrong), AlgorithmError);
+  GradientCache small(*basis, 1);
+  CHECK_THROWS_AS(rows.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, small), AlgorithmError);
 }
 
 TEST_CASE("least squares: smoothness rows and T-mesh edges", "[evolution][rows]") {
