@@ -110,8 +110,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   std::string stop_reason;
 
   std::vector<std::vector<double>> iterates;  // for `midway`: small (coarse T-mesh, tens of steps)
-  // The band's gradient rows at the sub-cell centres, computed once per site (issue 7: a third of the
-  // rows' time was recomputing them step after step).
+  // The band's gradient rows at the sub-cell centres, computed once per site (issue 7: recomputing them
+  // step after step was 70 % of the rows' time).
   const int b = std::max(1, options.band_subdivision);
   GradientCache gradients(basis, tmesh.leaf_count() * b * b * b);
   for (int it = 0;; ++it) {

@@ -141,6 +141,10 @@ void GradientCache::fill(const std::vector<Vec3>& x, const std::vector<int>& sit
     }
   }
   for (std::size_t m = 0; m < missing.size(); ++m) {
+    if (bytes() + index[m].size() * (sizeof(int) + sizeof(Vec3)) > max_bytes_) {
+      slot_[std::size_t(sites[missing[m]])] = -1;  // over budget: computed afresh when asked
+      continue;
+    }
     slot_[std::size_t(sites[missing[m]])] = int(begin_.size()) - 1;
     index_.insert(index_.end(), index[m].begin(), index[m].end());
     gradient_.insert(gradient_.end(), gradient[m].begin(), gradient[m].end());
@@ -186,7 +190,7 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     ActiveBasis active;
     b.count.reserve(end - begin);
     for (long k = begin; k < end; ++k) {
-      if (cache && (*sites)[std::size_t(k)] >= 0) {  // a gradient row at a cached site
+      if (cache && (*sites)[std::size_t(k)] >= 0 && cache->has((*sites)[std::size_t(k)])) {  // a cached site
         const int site = (*sites)[std::size_t(k)], size = cache->size(site);
         const int* index = cache->index(site);
         const Vec3* gradient = cache->gradient(site);

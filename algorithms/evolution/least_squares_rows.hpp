@@ -78,7 +78,9 @@ struct LeastSquaresSystem {
 /// any number in [0, sites); the caller keeps the numbering fixed (ZeroSetSamples::band_site).
 class GradientCache {
  public:
-  GradientCache(const TSplineBasis& basis, int sites) : basis_(basis), slot_(std::size_t(sites), -1) {}
+  /// At most `max_bytes` of entries are kept (sites beyond are computed afresh each time: the same rows).
+  GradientCache(const TSplineBasis& basis, int sites, std::size_t max_bytes = std::size_t(256) << 20)
+      : basis_(basis), slot_(std::size_t(sites), -1), max_bytes_(max_bytes) {}
   const TSplineBasis& basis() const { return basis_; }
   /// Computes the missing sites among `sites` (negative entries: not a site, skipped) at `x`, in parallel.
   void fill(const std::vector<Vec3>& x, const std::vector<int>& sites);
@@ -88,6 +90,7 @@ class GradientCache {
   const Vec3* gradient(int site) const { return &gradient_[std::size_t(begin_[std::size_t(slot_[std::size_t(site)])])]; }
   bool has(int site) const { return slot_[std::size_t(site)] >= 0; }
   std::size_t filled() const { return begin_.size() - 1; }
+  std::size_t bytes() const { return index_.size() * (sizeof(int) + sizeof(Vec3)); }
 
  private:
   const TSplineBasis& basis_;
@@ -95,6 +98,7 @@ class GradientCache {
   std::vector<int> begin_{0};   // slot -> its entries [begin_[slot], begin_[slot + 1])
   std::vector<int> index_;
   std::vector<Vec3> gradient_;
+  std::size_t max_bytes_;
 };
 
 /// Collects rows over the global control indices of a basis, then renumbers them (finish()).

@@ -107,6 +107,21 @@ TEST_CASE("least squares: gradient rows from the band's site cache equal rows co
     CHECK(a.control == b.control);
     CHECK(cache.filled() == std::size_t(sites));
   }
+  // A cache over its memory budget keeps what fits and computes the rest afresh: the same rows.
+  GradientCache tight(*basis, basis->octree().leaf_count() * 8, 20000);
+  for (int step = 0; step < 2; ++step) {
+    const std::vector<Vec3> direction(samples.band.size(), Vec3(0.2, 0.5, -0.3));
+    const std::vector<double> target(samples.band.size(), 0.1);
+    LeastSquaresBuilder fresh(*basis), cached(*basis);
+    fresh.add_gradient_rows(samples.band, direction, target, 1.0);
+    cached.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, tight);
+    const LeastSquaresSystem a = fresh.finish(Smoothness::tikhonov, 0.1), b = cached.finish(Smoothness::tikhonov, 0.1);
+    CHECK(a.column == b.column);
+    CHECK(a.value == b.value);
+    CHECK(tight.bytes() <= 20000);
+    CHECK(tight.filled() > 0);
+    CHECK(tight.filled() < std::size_t(sites));
+  }
   // A cache of another basis, or a site out of its range, is an error, not a wrong row.
   auto other = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(300), test::test_options("distance", "eigen_ldlt").tmesh));
   GradientCache wrong(*other, 8 * other->octree().leaf_count());
