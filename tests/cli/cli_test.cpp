@@ -256,7 +256,7 @@ TEST_CASE("metrics.stage_surfaces compares every stage's mesh with the truth") {
 datasets:
   - {name: torus, shape: torus, sampler: {type: area, count: 2000}}
 pipelines:
-  - {name: dtsl, type: dtsl}
+  - {name: dtsl, type: dtsl, options: {evolution_tmesh_max_depth: 4}}   # coarse: cheap under the sanitizers
 table: {columns: [dataset, chamfer@MI, accuracy@MD, completeness@MS, chamfer@final, chamfer]}
 )";
   const std::string config = tmp.file("with.yaml", "experiment: with\nmetrics: {samples: 2000, stage_surfaces: true}" + body);
