@@ -118,6 +118,7 @@ void GradientCache::fill(const std::vector<Vec3>& x, const std::vector<int>& sit
     if (s >= 0 && std::size_t(s) >= slot_.size())
       throw AlgorithmError("gradient cache: site " + std::to_string(s) + " out of range [0, " +
                            std::to_string(slot_.size()) + ")");
+  if (full_) return;  // the rows compute the rest afresh, once
   std::vector<std::size_t> missing;
   for (std::size_t k = 0; k < sites.size(); ++k) {
     const int s = sites[k];
@@ -143,6 +144,7 @@ void GradientCache::fill(const std::vector<Vec3>& x, const std::vector<int>& sit
   for (std::size_t m = 0; m < missing.size(); ++m) {
     if (bytes() + index[m].size() * (sizeof(int) + sizeof(Vec3)) > max_bytes_) {
       slot_[std::size_t(sites[missing[m]])] = -1;  // over budget: computed afresh when asked
+      full_ = true;
       continue;
     }
     slot_[std::size_t(sites[missing[m]])] = int(begin_.size()) - 1;

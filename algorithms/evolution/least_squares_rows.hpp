@@ -99,6 +99,7 @@ class GradientCache {
   std::vector<int> index_;
   std::vector<Vec3> gradient_;
   std::size_t max_bytes_;
+  bool full_ = false;  // an entry did not fit: fill() computes nothing more
 };
 
 /// Collects rows over the global control indices of a basis, then renumbers them (finish()).

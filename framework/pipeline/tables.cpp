@@ -41,26 +41,20 @@ bool resolve(const std::string& name, ColumnDef& out) {
   if (atpos != std::string::npos) {
     const std::string base = name.substr(0, atpos), label = name.substr(atpos + 1);
     if (label.empty()) return false;
-    if (base == "e_avr" || base == "e_max") {
-      const std::string key = base;
-      out = {base + " " + label + " (1e-3)", [key, label](const json& r) {
+    // A stage mesh's measure (point errors always; distances to the truth with metrics.stage_surfaces);
+    // "final" is the result's.
+    const auto stage_measure = [&out, &label](const std::string& head, const char* group, const std::string& key) {
+      out = {head + " " + label + " (1e-3)", [group, key, label](const json& r) {
                const json* s = stage_with(r, "mesh_label", label);
-               if (!s && label == "final") return number(at(r, {"final", "point_errors", key.c_str()}), 1e3, "%.2f");
-               return s ? number(at(*s, {"measures", "point_errors", key.c_str()}), 1e3, "%.2f") : std::string("–");
+               if (!s && label == "final") return number(at(r, {"final", group, key.c_str()}), 1e3, "%.2f");
+               return s ? number(at(*s, {"measures", group, key.c_str()}), 1e3, "%.2f") : std::string("–");
              }};
       return true;
-    }
-    if (base == "chamfer" || base == "accuracy" || base == "completeness") {
-      // A stage mesh's distances to the truth (metrics.stage_surfaces); "final" is the result's.
-      const std::string key = base;
-      const std::string head = base == "chamfer" ? "chamfer" : base == "accuracy" ? "acc" : "comp";
-      out = {head + " " + label + " (1e-3)", [key, label](const json& r) {
-               const json* s = stage_with(r, "mesh_label", label);
-               if (!s && label == "final") return number(at(r, {"final", "surface", key.c_str()}), 1e3, "%.2f");
-               return s ? number(at(*s, {"measures", "surface", key.c_str()}), 1e3, "%.2f") : std::string("–");
-             }};
-      return true;
-    }
+    };
+    if (base == "e_avr" || base == "e_max") return stage_measure(base, "point_errors", base);
+    if (base == "chamfer") return stage_measure("chamfer", "surface", base);
+    if (base == "accuracy") return stage_measure("acc", "surface", base);
+    if (base == "completeness") return stage_measure("comp", "surface", base);
     if (base == "nv") {
       out = {"nv " + label, [label](const json& r) {
                const json* s = stage_with(r, "mesh_label", label);

@@ -89,13 +89,8 @@ TEST_CASE("least squares: gradient rows from the band's site cache equal rows co
   for (int s : samples.band_site) (s >= 0 ? sites : zero_set) += 1;
   REQUIRE(sites > 100);
   REQUIRE(zero_set > 10);  // the zero-set points among the band: no site, computed afresh
-  GradientCache cache(*basis, basis->octree().leaf_count() * 8);
-  std::mt19937_64 rng(4);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  // Two "steps": the same band with new directions; the second reads every site from the cache.
-  for (int step = 0; step < 2; ++step) {
-    std::vector<Vec3> direction;
-    for (std::size_t m = 0; m < samples.band.size(); ++m) direction.push_back(Vec3(u(rng), u(rng), u(rng)));
+  // Rows built through `cache` against rows computed afresh, for one "step" (the band, new directions).
+  const auto same_rows = [&](GradientCache& cache, const std::vector<Vec3>& direction) {
     const std::vector<double> target(samples.band.size(), 0.5);
     LeastSquaresBuilder fresh(*basis), cached(*basis);
     fresh.add_gradient_rows(samples.band, direction, target, 1.0);
@@ -105,19 +100,21 @@ TEST_CASE("least squares: gradient rows from the band's site cache equal rows co
     CHECK(a.column == b.column);
     CHECK(a.value == b.value);  // bit for bit
     CHECK(a.control == b.control);
+  };
+  GradientCache cache(*basis, basis->octree().leaf_count() * 8);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // Two steps: the second reads every site from the cache.
+  for (int step = 0; step < 2; ++step) {
+    std::vector<Vec3> direction;
+    for (std::size_t m = 0; m < samples.band.size(); ++m) direction.push_back(Vec3(u(rng), u(rng), u(rng)));
+    same_rows(cache, direction);
     CHECK(cache.filled() == std::size_t(sites));
   }
   // A cache over its memory budget keeps what fits and computes the rest afresh: the same rows.
   GradientCache tight(*basis, basis->octree().leaf_count() * 8, 20000);
   for (int step = 0; step < 2; ++step) {
-    const std::vector<Vec3> direction(samples.band.size(), Vec3(0.2, 0.5, -0.3));
-    const std::vector<double> target(samples.band.size(), 0.1);
-    LeastSquaresBuilder fresh(*basis), cached(*basis);
-    fresh.add_gradient_rows(samples.band, direction, target, 1.0);
-    cached.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, tight);
-    const LeastSquaresSystem a = fresh.finish(Smoothness::tikhonov, 0.1), b = cached.finish(Smoothness::tikhonov, 0.1);
-    CHECK(a.column == b.column);
-    CHECK(a.value == b.value);
+    same_rows(tight, std::vector<Vec3>(samples.band.size(), Vec3(0.2, 0.5, -0.3)));
     CHECK(tight.bytes() <= 20000);
     CHECK(tight.filled() > 0);
     CHECK(tight.filled() < std::size_t(sites));
