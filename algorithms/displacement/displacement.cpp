@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "algorithms/displacement/curvature.hpp"
 #include "algorithms/displacement/hole_fill.hpp"
+#include "algorithms/displacement/local_regression.hpp"
 #include "algorithms/displacement/vertex_grid.hpp"
+#include "framework/config/prefixed_visitor.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
 
@@ -32,6 +36,19 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("residual_passes", residual_passes,
           "passes that add the Gaussian mean of each point's remaining offset from the displaced mesh "
           "(removes the filter's bias where d varies; 0 = the paper's single filter)");
+  v.field("noise_sigma", noise_sigma,
+          "noise along the normal (frame units): -1 estimates it from the data, 0 = noise-free, > 0 = given");
+  v.field("noise_tolerance", noise_tolerance,
+          "largest noise deviation left in d(v), x mean edge length: the filter widens until it averages enough feet");
+  v.field("max_sigma_factor", max_sigma_factor, "a filter widened against noise stops at this x mean edge length");
+  v.field("regression_degree", regression_degree,
+          "degree of the local polynomial fitted to the d_k over the tangent plane (0 = the paper's Gaussian mean)");
+  v.field("discrepancy", discrepancy,
+          "residual passes stop when the points' RMS offset falls to this x the noise sigma (0: all passes)");
+  {
+    PrefixedVisitor n(v, "noise_");
+    noise.visit(n);
+  }
   v.field("check_all_faces", check_all_faces, "test every triangle for flips, not only around vertices at risk");
   v.field("report_errors", report_errors, "report e_avr/e_max before and after (one-ring search, approximate)");
   projection.visit(v);
@@ -47,6 +64,13 @@ void DisplacementOptions::check() const {
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
+  require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
+          "must be -1 (estimate from the data), 0 (noise-free) or positive, got " + std::to_string(noise_sigma));
+  check_range("noise_tolerance", noise_tolerance, 1e-3, 10.0);
+  check_range("max_sigma_factor", max_sigma_factor, 0.05, 20.0);
+  check_range("regression_degree", regression_degree, 0, 2);
+  check_non_negative("discrepancy", discrepancy);
+  checked_with_prefix("noise_", [&] { noise.check(); });
   projection.check();
 }
 
@@ -77,9 +101,23 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   const ProjectionResult& pr = r.projection;
 
   const std::size_t nv = base.vertices.size();
-  const double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * locator.mean_edge_length();
-  const double radius = options.support * sigma;
+  const double edge = locator.mean_edge_length();
+  const double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * edge;
   const double cos_max = std::cos(options.max_normal_angle_deg * M_PI / 180.0);
+
+  // The noise along the normal: it sets how many feet a vertex's filter must average.
+  NoiseEstimate noise;
+  if (options.noise_sigma < 0) noise = estimate_noise(points, options.noise);
+  const double noise_sigma = options.noise_sigma < 0 ? noise.sigma : options.noise_sigma;
+  const int parameters = options.regression_degree == 0 ? 1 : options.regression_degree == 1 ? 3 : 6;
+  const double tolerance = options.noise_tolerance * edge;
+  // Feet the filter must average: p (sigma_n / tolerance)^2; within a radius 2 sigma of a vertex a
+  // Gaussian of width sigma has that many effective samples (4 pi sigma^2 rho), so a vertex's width is
+  // half the distance to its feet_needed-th nearest foot, between sigma and max_sigma_factor x edge.
+  const double feet_needed = parameters * std::pow(noise_sigma / tolerance, 2);
+  const double sigma_max = std::max(sigma, options.max_sigma_factor * edge);
+  const bool widen = noise_sigma > 0 && feet_needed > 1.0 && sigma_max > sigma;
+  const double radius = options.support * (widen ? sigma_max : sigma);
 
   // Only converged, located foot points carry the field.
   std::vector<Vec3> feet;
@@ -87,7 +125,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   for (std::size_t k = 0; k < pr.foot_points.size(); ++k)
     if (pr.valid[k]) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
   if (feet.empty()) throw AlgorithmError("displacement: no data point could be projected onto f = 0");
-  const PointGrid foot_grid(feet, radius);
+  const PointGrid foot_grid(feet, options.support * sigma);
 
   // Vertex normals from grad f (paper §3.2), and the Gaussian-weighted mean of the nearby d_k. The
   // neighbourhood is a Euclidean ball around v over the foot points (all on f = 0), which for
@@ -96,9 +134,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   std::vector<Vec3> normals(nv);
   std::vector<char> known(nv, 0);
   std::vector<PrincipalCurvatures> curv(nv);
-  // Per vertex, the foot points of its filter and their Gaussian weights, normalised to sum 1.
+  std::vector<double> vertex_sigma(nv, sigma);
+  std::vector<int> degree_used(nv, 0);
+  // Per vertex, the foot points of its filter and their weights, normalised to sum 1.
   std::vector<std::vector<std::pair<int, double>>> filter(nv);
-  const double inv2s2 = 1.0 / (2.0 * sigma * sigma);
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < static_cast<long>(nv); ++v) {
     Vec3 g;
@@ -109,18 +148,38 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                  : base.has_normals()     ? base.normals[v]
                                           : Vec3::Zero();
     curv[v] = principal_curvatures(g, H);
-    double wsum = 0.0;
-    std::vector<std::pair<int, double>>& taps = filter[v];
-    foot_grid.for_each_within(base.vertices[v], radius, [&](int i, double d2) {
+    std::vector<std::pair<int, double>>& taps = filter[v];  // (point, squared distance), then weight
+    const double reach = widen ? radius : options.support * sigma;
+    foot_grid.for_each_within(base.vertices[v], reach, [&](int i, double d2) {
       const int k = foot_id[i];
       if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
-      const double w = std::exp(-d2 * inv2s2);
-      wsum += w;
-      taps.emplace_back(k, w);
+      taps.emplace_back(k, d2);
     });
+    double sv = sigma;
+    if (widen) {
+      const std::size_t needed = static_cast<std::size_t>(std::ceil(feet_needed));
+      double r2 = std::numeric_limits<double>::infinity();  // fewer feet in reach: the widest filter
+      if (taps.size() >= needed) {
+        std::vector<double> d2s(taps.size());
+        for (std::size_t t = 0; t < taps.size(); ++t) d2s[t] = taps[t].second;
+        std::nth_element(d2s.begin(), d2s.begin() + static_cast<long>(needed - 1), d2s.end());
+        r2 = d2s[needed - 1];
+      }
+      sv = std::clamp(0.5 * std::sqrt(r2), sigma, sigma_max);
+      const double keep2 = std::pow(options.support * sv, 2);
+      taps.erase(std::remove_if(taps.begin(), taps.end(), [&](const auto& t) { return t.second > keep2; }),
+                 taps.end());
+    }
+    vertex_sigma[v] = sv;
+    const double inv2s2 = 1.0 / (2.0 * sv * sv);
+    double wsum = 0.0;
+    for (auto& tap : taps) tap.second = std::exp(-tap.second * inv2s2), wsum += tap.second;
     if (static_cast<int>(taps.size()) >= options.min_points && wsum > 0 && wsum >= options.min_weight) {
       std::sort(taps.begin(), taps.end());  // a fixed summation order: the same d whatever the threads
       for (auto& tap : taps) tap.second /= wsum;
+      if (options.regression_degree > 0)
+        degree_used[v] = local_regression_weights(taps, pr.foot_points, base.vertices[v], normals[v], sv,
+                                            options.regression_degree);
       known[v] = 1;
     } else {
       taps.clear();
@@ -139,6 +198,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // Residual passes: the offset each point still has from the displaced mesh, along its foot normal.
   std::vector<double> residual(points.size(), 0.0);
   int passes = 0;
+  double residual_rms = 0.0;
+  const double discrepancy_rms = options.discrepancy * noise_sigma;
   for (; passes < options.residual_passes; ++passes) {
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < static_cast<long>(points.size()); ++k) {
@@ -149,6 +210,14 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       Vec3 moved = Vec3::Zero();
       for (int c = 0; c < 3; ++c) moved += loc.barycentric[c] * (base.vertices[face[c]] + d[face[c]] * normals[face[c]]);
       residual[k] = (points[k] - moved).dot(pr.foot_normals[k]);
+    }
+    if (discrepancy_rms > 0) {  // in point order: the same for every thread count
+      double sum2 = 0.0;
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < points.size(); ++k)
+        if (pr.valid[k]) sum2 += residual[k] * residual[k], ++count;
+      residual_rms = count ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;
+      if (residual_rms <= discrepancy_rms) break;
     }
     filtered(residual, d);
   }
@@ -218,6 +287,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"faces", base.faces.size()},
                       {"sigma", sigma},
                       {"residual_passes", passes},
+                      {"noise_sigma", noise_sigma},
+                      {"noise_estimated", options.noise_sigma < 0},
+                      {"filter_widened", widen},
+                      {"feet_needed", widen ? feet_needed : 0.0},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
                       {"spike_vertices", spikes},
@@ -230,6 +303,19 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"flipped_faces", r.flipped_faces.size()},
                       {"flipped_vertices", r.flipped_vertices.size()},
                       {"needs_refinement", r.needs_refinement}};
+  if (options.noise_sigma < 0) s["noise_estimate"] = noise.summary();
+  if (discrepancy_rms > 0) s["residual_rms"] = residual_rms, s["discrepancy_rms"] = discrepancy_rms;
+  {
+    double smean = 0.0, smax = 0.0;
+    int degrees[3] = {0, 0, 0};
+    for (std::size_t v = 0; v < nv; ++v) {
+      smean += vertex_sigma[v], smax = std::max(smax, vertex_sigma[v]);
+      if (known[v]) ++degrees[degree_used[v]];
+    }
+    s["vertex_sigma_mean"] = smean / static_cast<double>(nv);
+    s["vertex_sigma_max"] = smax;
+    s["regression_degree_vertices"] = {degrees[0], degrees[1], degrees[2]};
+  }
   s["seconds"] = timer.seconds();  // the D-Map time of Table 1, without the error report below
   if (options.report_errors) {
     s["errors_before"] = onering_errors(locator, points);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/displacement/noise_estimate.hpp"
 #include "algorithms/displacement/projection.hpp"
 #include "framework/config/options.hpp"
 #include "framework/core/implicit.hpp"
@@ -56,6 +57,26 @@ struct DisplacementOptions final : Options {
   /// along with its triangle) and adds the Gaussian mean of the r_k (Van Cittert's iteration). 0: the
   /// paper's single filter. Each pass also lets the noise through a little more.
   int residual_passes = 3;
+  /// Noise along the normal, standard deviation in frame units (ours): -1 estimates it from the data
+  /// (noise_estimate.hpp), 0 takes the data as noise-free (the fixed filter above, as before), > 0 is
+  /// the user's figure (a scanner's depth noise). Noise widens the filter and stops the residual passes.
+  double noise_sigma = -1.0;
+  /// The noise may leave at most this standard deviation in d(v), x the mean edge length: a vertex's
+  /// filter widens until it averages p (sigma_n / tolerance)^2 foot points (p = the regression's
+  /// parameters), the count at which a mean of independent noise has that deviation.
+  double noise_tolerance = 0.05;
+  /// A widened filter stops at this x the mean edge length.
+  double max_sigma_factor = 4.0;
+  /// The filter fits a polynomial of this degree to the d_k over the vertex's tangent plane and takes
+  /// its value at the vertex (local polynomial regression; ours): 0 is the paper's Gaussian mean, 1
+  /// (linear) is unbiased where d varies linearly (a tilted base surface), 2 (quadratic) where it bends
+  /// too, so a filter widened against noise does not flatten the shape. A vertex whose feet cannot
+  /// support the fit (too few, one-sided at a hole's rim) falls back to the next lower degree.
+  int regression_degree = 0;
+  /// Residual passes stop once the RMS of the points' remaining offsets falls to this x sigma_n
+  /// (Morozov's discrepancy principle: a fit closer than the noise is fitting the noise). 0: all passes.
+  double discrepancy = 1.0;
+  NoiseEstimateOptions noise;
   /// Test every triangle for flips, not only those around vertices at risk (a diagnostic).
   bool check_all_faces = false;
   /// Report e_avr/e_max of the data against the base and displaced meshes (through MeshLocator's
