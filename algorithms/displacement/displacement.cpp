@@ -38,9 +38,10 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "(removes the filter's bias where d varies; 0 = the paper's single filter)");
   v.field("noise_sigma", noise_sigma,
           "noise along the normal (frame units): -1 estimates it from the data, 0 = noise-free, > 0 = given");
-  v.field("noise_tolerance", noise_tolerance,
-          "largest noise deviation left in d(v), x mean edge length: the filter widens until it averages enough feet");
-  v.field("max_sigma_factor", max_sigma_factor, "a filter widened against noise stops at this x mean edge length");
+  v.field("ici_threshold", ici_threshold,
+          "noisy data: a vertex widens its filter while the estimates' intervals +- this x their noise deviation intersect");
+  v.field("scale_ratio", scale_ratio, "noisy data: successive filter widths tried differ by this factor");
+  v.field("max_sigma_factor", max_sigma_factor, "noisy data: the widest filter tried, x mean edge length");
   v.field("regression_degree", regression_degree,
           "degree of the local polynomial fitted to the d_k over the tangent plane (0 = the paper's Gaussian mean)");
   v.field("discrepancy", discrepancy,
@@ -66,7 +67,8 @@ void DisplacementOptions::check() const {
   check_range("residual_passes", residual_passes, 0, 20);
   require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
           "must be -1 (estimate from the data), 0 (noise-free) or positive, got " + std::to_string(noise_sigma));
-  check_range("noise_tolerance", noise_tolerance, 1e-3, 10.0);
+  check_range("ici_threshold", ici_threshold, 0.1, 10.0);
+  check_range("scale_ratio", scale_ratio, 1.05, 4.0);
   check_range("max_sigma_factor", max_sigma_factor, 0.05, 20.0);
   check_range("regression_degree", regression_degree, 0, 2);
   check_non_negative("discrepancy", discrepancy);
@@ -109,15 +111,13 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   NoiseEstimate noise;
   if (options.noise_sigma < 0) noise = estimate_noise(points, options.noise);
   const double noise_sigma = options.noise_sigma < 0 ? noise.sigma : options.noise_sigma;
-  const int parameters = options.regression_degree == 0 ? 1 : options.regression_degree == 1 ? 3 : 6;
-  const double tolerance = options.noise_tolerance * edge;
-  // Feet the filter must average: p (sigma_n / tolerance)^2; within a radius 2 sigma of a vertex a
-  // Gaussian of width sigma has that many effective samples (4 pi sigma^2 rho), so a vertex's width is
-  // half the distance to its feet_needed-th nearest foot, between sigma and max_sigma_factor x edge.
-  const double feet_needed = parameters * std::pow(noise_sigma / tolerance, 2);
-  const double sigma_max = std::max(sigma, options.max_sigma_factor * edge);
-  const bool widen = noise_sigma > 0 && feet_needed > 1.0 && sigma_max > sigma;
-  const double radius = options.support * (widen ? sigma_max : sigma);
+  // Filter widths tried where the data are noisy (ICI, DisplacementOptions::ici_threshold).
+  std::vector<double> widths{sigma};
+  if (noise_sigma > 0)
+    while (widths.back() * options.scale_ratio <= options.max_sigma_factor * edge * (1 + 1e-9))
+      widths.push_back(widths.back() * options.scale_ratio);
+  const bool widen = widths.size() > 1;
+  const double radius = options.support * widths.back();
 
   // Only converged, located foot points carry the field.
   std::vector<Vec3> feet;
@@ -148,41 +148,59 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                  : base.has_normals()     ? base.normals[v]
                                           : Vec3::Zero();
     curv[v] = principal_curvatures(g, H);
-    std::vector<std::pair<int, double>>& taps = filter[v];  // (point, squared distance), then weight
-    const double reach = widen ? radius : options.support * sigma;
-    foot_grid.for_each_within(base.vertices[v], reach, [&](int i, double d2) {
+    std::vector<std::pair<int, double>>& taps = filter[v];
+    std::vector<std::pair<int, double>> reach;  // (point, squared distance) within the widest support
+    foot_grid.for_each_within(base.vertices[v], radius, [&](int i, double d2) {
       const int k = foot_id[i];
       if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
-      taps.emplace_back(k, d2);
+      reach.emplace_back(k, d2);
     });
-    double sv = sigma;
-    if (widen) {
-      const std::size_t needed = static_cast<std::size_t>(std::ceil(feet_needed));
-      double r2 = std::numeric_limits<double>::infinity();  // fewer feet in reach: the widest filter
-      if (taps.size() >= needed) {
-        std::vector<double> d2s(taps.size());
-        for (std::size_t t = 0; t < taps.size(); ++t) d2s[t] = taps[t].second;
-        std::nth_element(d2s.begin(), d2s.begin() + static_cast<long>(needed - 1), d2s.end());
-        r2 = d2s[needed - 1];
-      }
-      sv = std::clamp(0.5 * std::sqrt(r2), sigma, sigma_max);
-      const double keep2 = std::pow(options.support * sv, 2);
-      taps.erase(std::remove_if(taps.begin(), taps.end(), [&](const auto& t) { return t.second > keep2; }),
-                 taps.end());
-    }
-    vertex_sigma[v] = sv;
-    const double inv2s2 = 1.0 / (2.0 * sv * sv);
-    double wsum = 0.0;
-    for (auto& tap : taps) tap.second = std::exp(-tap.second * inv2s2), wsum += tap.second;
-    if (static_cast<int>(taps.size()) >= options.min_points && wsum > 0 && wsum >= options.min_weight) {
-      std::sort(taps.begin(), taps.end());  // a fixed summation order: the same d whatever the threads
-      for (auto& tap : taps) tap.second /= wsum;
-      if (options.regression_degree > 0)
-        degree_used[v] = local_regression_weights(taps, pr.foot_points, base.vertices[v], normals[v], sv,
-                                            options.regression_degree);
-      known[v] = 1;
-    } else {
+    // Width j's taps: the feet within its support, Gaussian weights normalised to sum 1, polynomial
+    // weights beyond the base width; false where they fail the hole test.
+    const auto taps_at = [&](std::size_t j, std::vector<std::pair<int, double>>& out) {
+      const double sv = widths[j], keep2 = std::pow(options.support * sv, 2), inv2s2 = 1.0 / (2.0 * sv * sv);
+      out.clear();
+      double wsum = 0.0;
+      for (const auto& [k, d2] : reach)
+        if (d2 <= keep2) {
+          const double w = std::exp(-d2 * inv2s2);
+          wsum += w;
+          out.emplace_back(k, w);
+        }
+      if (static_cast<int>(out.size()) < options.min_points || !(wsum > 0) || wsum < options.min_weight) return false;
+      std::sort(out.begin(), out.end());  // a fixed summation order: the same d whatever the threads
+      for (auto& tap : out) tap.second /= wsum;
+      if (j > 0 && options.regression_degree > 0)
+        degree_used[v] = local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
+                                                  options.regression_degree);
+      return true;
+    };
+    if (!taps_at(0, taps)) {
       taps.clear();
+      continue;
+    }
+    known[v] = 1;
+    // ICI: widen while the confidence intervals of the estimates so far intersect.
+    const auto estimate = [&](const std::vector<std::pair<int, double>>& t, double* deviation) {
+      double e = 0.0, l2 = 0.0;
+      for (const auto& [k, l] : t) e += l * pr.displacements[k], l2 += l * l;
+      *deviation = options.ici_threshold * noise_sigma * std::sqrt(l2);
+      return e;
+    };
+    double dev = 0.0, e = estimate(taps, &dev);
+    double lower = e - dev, upper = e + dev;
+    std::vector<std::pair<int, double>> wider;
+    for (std::size_t j = 1; j < widths.size(); ++j) {
+      const int degree_before = degree_used[v];
+      if (!taps_at(j, wider)) break;
+      e = estimate(wider, &dev);
+      lower = std::max(lower, e - dev), upper = std::min(upper, e + dev);
+      if (lower > upper) {
+        degree_used[v] = degree_before;
+        break;
+      }
+      taps.swap(wider);
+      vertex_sigma[v] = widths[j];
     }
   }
   const auto filtered = [&](const std::vector<double>& value, std::vector<double>& d) {
@@ -290,7 +308,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"noise_sigma", noise_sigma},
                       {"noise_estimated", options.noise_sigma < 0},
                       {"filter_widened", widen},
-                      {"feet_needed", widen ? feet_needed : 0.0},
+                      {"filter_widths", widths},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
                       {"spike_vertices", spikes},

@@ -61,16 +61,21 @@ struct DisplacementOptions final : Options {
   /// (noise_estimate.hpp), 0 takes the data as noise-free (the fixed filter above, as before), > 0 is
   /// the user's figure (a scanner's depth noise). Noise widens the filter and stops the residual passes.
   double noise_sigma = -1.0;
-  /// The noise may leave at most this standard deviation in d(v), x the mean edge length: a vertex's
-  /// filter widens until it averages p (sigma_n / tolerance)^2 foot points (p = the regression's
-  /// parameters), the count at which a mean of independent noise has that deviation.
-  double noise_tolerance = 0.05;
-  /// A widened filter stops at this x the mean edge length.
+  /// Where the data are noisy each vertex picks its own filter width (ours), by the intersection of
+  /// confidence intervals (ICI; Katkovnik's LPA-ICI): widths sigma x scale_ratio^j, the estimate d_j of
+  /// each with its noise deviation s_j = sigma_n sqrt(sum_k l_k^2); the widest j whose intervals
+  /// [d_i - ici_threshold s_i, d_i + ici_threshold s_i], i <= j, still share a point. A wider filter
+  /// averages more noise away until its bias (the shape it flattens) exceeds the noise it removes;
+  /// smooth parts get a wide filter, fine relief keeps the narrow one.
+  double ici_threshold = 2.0;
+  double scale_ratio = 1.41421356237;
+  /// The widest filter tried, x the mean edge length.
   double max_sigma_factor = 4.0;
   /// The filter fits a polynomial of this degree to the d_k over the vertex's tangent plane and takes
   /// its value at the vertex (local polynomial regression; ours): 0 is the paper's Gaussian mean, 1
   /// (linear) is unbiased where d varies linearly (a tilted base surface), 2 (quadratic) where it bends
-  /// too, so a filter widened against noise does not flatten the shape. A vertex whose feet cannot
+  /// too, so a filter widened against noise flattens less of the shape. Only the widened filters fit
+  /// (the base width keeps the paper's mean, and noise-free data the paper's filter). A vertex whose feet cannot
   /// support the fit (too few, one-sided at a hole's rim) falls back to the next lower degree.
   int regression_degree = 0;
   /// Residual passes stop once the RMS of the points' remaining offsets falls to this x sigma_n

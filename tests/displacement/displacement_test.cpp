@@ -142,3 +142,78 @@ TEST_CASE("curvature check: a large displacement at a thin concave neck is flagg
   CHECK(unsigned_check.at_risk_vertices.size() > r.at_risk_vertices.size());
   CHECK(unsigned_check.flipped_faces.size() == r.flipped_faces.size());
 }
+
+namespace {
+
+// Mean radial distance of the vertices from the noise-free bumpy sphere bumpy_sphere samples.
+double mean_distance_to_bumpy_sphere(const TriangleMesh& m, double R, double a) {
+  double sum = 0.0;
+  for (const Vec3& v : m.vertices) {
+    const Vec3 d = v.normalized();
+    const double theta = std::acos(d.z()), phi = std::atan2(d.y(), d.x());
+    sum += std::abs(v.norm() - (R + a * std::sin(3 * theta) * std::cos(2 * phi)));
+  }
+  return sum / static_cast<double>(m.vertices.size());
+}
+
+}  // namespace
+
+TEST_CASE("on noisy data the filter widens where the shape allows: closer to the true surface", "[displacement][noise]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  const std::vector<Vec3> points = bumpy_sphere(40000, 0.63, 0.02, 0.004, 2);
+  DisplacementOptions paper;
+  paper.noise_sigma = 0.0;  // the fixed filter: noise-free data assumed
+  DisplacementOptions adaptive;  // noise estimated from the data
+  adaptive.regression_degree = 2;
+  const DisplacementResult fixed = displace_mesh(f, base, points, paper);
+  const DisplacementResult widened = displace_mesh(f, base, points, adaptive);
+  const double e_fixed = mean_distance_to_bumpy_sphere(fixed.mesh, 0.63, 0.02);
+  const double e_widened = mean_distance_to_bumpy_sphere(widened.mesh, 0.63, 0.02);
+  std::cout << "[noise] bumpy sphere, noise 0.004: distance to the truth " << e_fixed << " (fixed filter) -> "
+            << e_widened << " (ICI widths); summary " << widened.summary.dump() << "\n";
+  CHECK(widened.summary["noise_sigma"].get<double>() == Approx(0.004).epsilon(0.2));
+  CHECK(widened.summary["filter_widened"].get<bool>());
+  CHECK(widened.summary["vertex_sigma_mean"].get<double>() > 1.5 * widened.summary["sigma"].get<double>());
+  CHECK(e_widened < 0.6 * e_fixed);
+  // The residual passes stop once the points' RMS offset is down to the noise (discrepancy principle;
+  // here the widened fit ends just above sigma_n, at 1.1 x it stops); the fixed filter runs them all.
+  CHECK(fixed.summary["residual_passes"].get<int>() == paper.residual_passes);
+  adaptive.discrepancy = 1.1;
+  const DisplacementResult stopped = displace_mesh(f, base, points, adaptive);
+  CHECK(stopped.summary["residual_passes"].get<int>() < adaptive.residual_passes);
+  CHECK(stopped.summary["residual_rms"].get<double>() <= 1.1 * stopped.summary["noise_sigma"].get<double>());
+  CHECK(widened.flipped_faces.empty());
+  CHECK(mesh_stats(widened.mesh).watertight);
+}
+
+TEST_CASE("noise-free data keep the paper's fixed filter", "[displacement][noise]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  const std::vector<Vec3> points = bumpy_sphere(40000, 0.63, 0.02, 0.0, 3);
+  DisplacementOptions paper;
+  paper.noise_sigma = 0.0;
+  DisplacementOptions estimated;
+  estimated.regression_degree = 2;
+  const DisplacementResult a = displace_mesh(f, base, points, paper), b = displace_mesh(f, base, points, estimated);
+  std::cout << "[noise] clean bumpy sphere: estimated noise " << b.summary["noise_sigma"] << ", widths "
+            << b.summary["filter_widths"] << ", mean width " << b.summary["vertex_sigma_mean"] << "\n";
+  CHECK(b.summary["noise_sigma"].get<double>() < 1e-4);
+  double max_shift = 0.0;
+  for (std::size_t v = 0; v < a.mesh.vertices.size(); ++v)
+    max_shift = std::max(max_shift, (a.mesh.vertices[v] - b.mesh.vertices[v]).norm());
+  CHECK(max_shift < 1e-4);
+  if (b.summary["noise_sigma"].get<double>() == 0.0) CHECK(max_shift == 0.0);
+}
+
+TEST_CASE("the noise options name bad values", "[displacement][noise]") {
+  DisplacementOptions o;
+  o.noise_sigma = -0.5;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("noise_sigma"));
+  o = DisplacementOptions{};
+  o.regression_degree = 3;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("regression_degree"));
+  o = DisplacementOptions{};
+  o.noise.small_neighbours = 40;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("noise_small_neighbours"));
+}
