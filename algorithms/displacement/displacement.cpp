@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "algorithms/displacement/curvature.hpp"
@@ -38,8 +39,11 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "(removes the filter's bias where d varies; 0 = the paper's single filter)");
   v.field("noise_sigma", noise_sigma,
           "noise along the normal (frame units): -1 estimates it from the data, 0 = noise-free, > 0 = given");
+  v.field("noise_floor", noise_floor,
+          "an estimated noise below this x the data's median spacing counts as none (the fixed filter)");
   v.field("ici_threshold", ici_threshold,
           "noisy data: a vertex widens its filter while the estimates' intervals +- this x their noise deviation intersect");
+  v.field("ici_smoothing", ici_smoothing, "noisy data: one-ring median passes over the widths ICI chose");
   v.field("scale_ratio", scale_ratio, "noisy data: successive filter widths tried differ by this factor");
   v.field("max_sigma_factor", max_sigma_factor, "noisy data: the widest filter tried, x mean edge length");
   v.field("regression_degree", regression_degree,
@@ -67,8 +71,10 @@ void DisplacementOptions::check() const {
   check_range("residual_passes", residual_passes, 0, 20);
   require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
           "must be -1 (estimate from the data), 0 (noise-free) or positive, got " + std::to_string(noise_sigma));
+  check_range("noise_floor", noise_floor, 0.0, 1.0);
   check_range("ici_threshold", ici_threshold, 0.1, 10.0);
   check_range("scale_ratio", scale_ratio, 1.05, 4.0);
+  check_range("ici_smoothing", ici_smoothing, 0, 100);
   check_range("max_sigma_factor", max_sigma_factor, 0.05, 20.0);
   check_range("regression_degree", regression_degree, 0, 2);
   check_non_negative("discrepancy", discrepancy);
@@ -108,15 +114,23 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   const double cos_max = std::cos(options.max_normal_angle_deg * M_PI / 180.0);
 
   // The noise along the normal: it sets how many feet a vertex's filter must average.
+  Stopwatch part;
   NoiseEstimate noise;
-  if (options.noise_sigma < 0) noise = estimate_noise(points, options.noise);
-  const double noise_sigma = options.noise_sigma < 0 ? noise.sigma : options.noise_sigma;
+  // Fewer points than a fit needs: no estimate, the fixed filter (the summary says so).
+  const bool estimate = options.noise_sigma < 0 && points.size() >= static_cast<std::size_t>(options.noise.neighbours);
+  if (estimate) noise = estimate_noise(points, options.noise);
+  const double noise_sigma = options.noise_sigma >= 0                              ? options.noise_sigma
+                             : noise.sigma >= options.noise_floor * noise.spacing ? noise.sigma
+                                                                                  : 0.0;
+  const double noise_seconds = part.seconds();
   // Filter widths tried where the data are noisy (ICI, DisplacementOptions::ici_threshold).
   std::vector<double> widths{sigma};
   if (noise_sigma > 0)
     while (widths.back() * options.scale_ratio <= options.max_sigma_factor * edge * (1 + 1e-9))
       widths.push_back(widths.back() * options.scale_ratio);
   const bool widen = widths.size() > 1;
+  std::vector<double> support2;  // squared support radius of each width
+  for (double w : widths) support2.push_back(std::pow(options.support * w, 2));
   const double radius = options.support * widths.back();
 
   // Only converged, located foot points carry the field.
@@ -125,7 +139,13 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   for (std::size_t k = 0; k < pr.foot_points.size(); ++k)
     if (pr.valid[k]) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
   if (feet.empty()) throw AlgorithmError("displacement: no data point could be projected onto f = 0");
-  const PointGrid foot_grid(feet, options.support * sigma);
+  // Cells about half the query radius: a widened filter's ball (up to 8x the base radius) would
+  // otherwise visit thousands of empty cells per vertex. Most vertices stop widening early, so their
+  // feet are first gathered for the first few widths only (`near`), from a finer grid.
+  const std::size_t near = std::min<std::size_t>(2, widths.size() - 1);
+  const PointGrid foot_grid(feet, 0.5 * options.support * widths[near] * (widen ? 1.0 : 2.0));
+  std::unique_ptr<PointGrid> far_grid;
+  if (near + 1 < widths.size()) far_grid = std::make_unique<PointGrid>(feet, 0.5 * radius);
 
   // Vertex normals from grad f (paper §3.2), and the Gaussian-weighted mean of the nearby d_k. The
   // neighbourhood is a Euclidean ball around v over the foot points (all on f = 0), which for
@@ -135,9 +155,61 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   std::vector<char> known(nv, 0);
   std::vector<PrincipalCurvatures> curv(nv);
   std::vector<double> vertex_sigma(nv, sigma);
-  std::vector<int> degree_used(nv, 0);
+  std::vector<int> degree_used(nv, 0), width_index(nv, 0);
   // Per vertex, the foot points of its filter and their weights, normalised to sum 1.
   std::vector<std::vector<std::pair<int, double>>> filter(nv);
+  // v's feet within the widest support that pass the normal test: (point, squared distance).
+  const auto gather = [&](long v, std::vector<std::pair<int, double>>& reach, std::size_t upto) {
+    reach.clear();
+    const PointGrid& grid = upto <= near ? foot_grid : *far_grid;
+    grid.for_each_within(base.vertices[v], options.support * widths[upto], [&](int i, double d2) {
+      const int k = foot_id[i];
+      if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
+      reach.emplace_back(k, d2);
+    });
+    // Widened: grouped by the narrowest width whose support holds them (a counting sort, stable, so
+    // the order stays the grid's: deterministic), so that each width's taps are a prefix.
+    if (widen) {
+      std::vector<int> group(reach.size());
+      std::vector<std::size_t> start(widths.size() + 1, 0);
+      for (std::size_t t = 0; t < reach.size(); ++t) {
+        const std::size_t j = static_cast<std::size_t>(
+            std::lower_bound(support2.begin(), support2.end(), reach[t].second) - support2.begin());
+        group[t] = static_cast<int>(std::min(j, widths.size() - 1));
+        ++start[group[t] + 1];
+      }
+      for (std::size_t j = 1; j < start.size(); ++j) start[j] += start[j - 1];
+      std::vector<std::pair<int, double>> sorted(reach.size());
+      for (std::size_t t = 0; t < reach.size(); ++t) sorted[start[group[t]]++] = reach[t];
+      reach.swap(sorted);
+    }
+  };
+  // Width j's taps: the feet within its support, Gaussian weights normalised to sum 1, polynomial
+  // weights beyond the base width; false where they fail the hole test.
+  const auto taps_at = [&](long v, const std::vector<std::pair<int, double>>& reach, std::size_t j,
+                           std::vector<std::pair<int, double>>& out, int* degree) {
+    const double sv = widths[j], keep2 = support2[j], inv2s2 = 1.0 / (2.0 * sv * sv);
+    out.clear();
+    double wsum = 0.0;
+    for (const auto& [k, d2] : reach) {
+      if (d2 > keep2) {
+        if (widen) break;  // grouped by width: the rest lie beyond this one
+        continue;
+      }
+      const double w = std::exp(-d2 * inv2s2);
+      wsum += w;
+      out.emplace_back(k, w);
+    }
+    if (static_cast<int>(out.size()) < options.min_points || !(wsum > 0) || wsum < options.min_weight) return false;
+    // A fixed summation order: the same d whatever the threads (widened: the distance order already is).
+    if (!widen) std::sort(out.begin(), out.end());
+    for (auto& tap : out) tap.second /= wsum;
+    *degree = j > 0 && options.regression_degree > 0
+                  ? local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
+                                             options.regression_degree)
+                  : 0;
+    return true;
+  };
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < static_cast<long>(nv); ++v) {
     Vec3 g;
@@ -149,33 +221,11 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                                           : Vec3::Zero();
     curv[v] = principal_curvatures(g, H);
     std::vector<std::pair<int, double>>& taps = filter[v];
-    std::vector<std::pair<int, double>> reach;  // (point, squared distance) within the widest support
-    foot_grid.for_each_within(base.vertices[v], radius, [&](int i, double d2) {
-      const int k = foot_id[i];
-      if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
-      reach.emplace_back(k, d2);
-    });
-    // Width j's taps: the feet within its support, Gaussian weights normalised to sum 1, polynomial
-    // weights beyond the base width; false where they fail the hole test.
-    const auto taps_at = [&](std::size_t j, std::vector<std::pair<int, double>>& out) {
-      const double sv = widths[j], keep2 = std::pow(options.support * sv, 2), inv2s2 = 1.0 / (2.0 * sv * sv);
-      out.clear();
-      double wsum = 0.0;
-      for (const auto& [k, d2] : reach)
-        if (d2 <= keep2) {
-          const double w = std::exp(-d2 * inv2s2);
-          wsum += w;
-          out.emplace_back(k, w);
-        }
-      if (static_cast<int>(out.size()) < options.min_points || !(wsum > 0) || wsum < options.min_weight) return false;
-      std::sort(out.begin(), out.end());  // a fixed summation order: the same d whatever the threads
-      for (auto& tap : out) tap.second /= wsum;
-      if (j > 0 && options.regression_degree > 0)
-        degree_used[v] = local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
-                                                  options.regression_degree);
-      return true;
-    };
-    if (!taps_at(0, taps)) {
+    std::vector<std::pair<int, double>> reach;
+    gather(v, reach, near);
+    std::size_t reached = near;  // reach holds the feet of widths 0..reached
+    int degree = 0;
+    if (!taps_at(v, reach, 0, taps, &degree)) {
       taps.clear();
       continue;
     }
@@ -191,18 +241,51 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     double lower = e - dev, upper = e + dev;
     std::vector<std::pair<int, double>> wider;
     for (std::size_t j = 1; j < widths.size(); ++j) {
-      const int degree_before = degree_used[v];
-      if (!taps_at(j, wider)) break;
+      if (j > reached) gather(v, reach, reached = widths.size() - 1);
+      if (!taps_at(v, reach, j, wider, &degree)) break;
       e = estimate(wider, &dev);
       lower = std::max(lower, e - dev), upper = std::min(upper, e + dev);
-      if (lower > upper) {
-        degree_used[v] = degree_before;
-        break;
-      }
+      if (lower > upper) break;
       taps.swap(wider);
+      width_index[v] = static_cast<int>(j);
+      degree_used[v] = degree;
       vertex_sigma[v] = widths[j];
     }
   }
+  // The chosen widths, smoothed: each vertex takes the median index of its one-ring (ICI's choices
+  // jump between neighbours; a patchwork of widths is a patchwork of biases). Then the taps again.
+  if (widen && options.ici_smoothing > 0) {
+    for (int pass = 0; pass < options.ici_smoothing; ++pass) {
+      std::vector<int> next = width_index;
+#pragma omp parallel for schedule(static)
+      for (long v = 0; v < static_cast<long>(nv); ++v) {
+        if (!known[v]) continue;
+        std::vector<int> ring{width_index[v]};
+        for (int u : locator.vertex_neighbours(static_cast<int>(v)))
+          if (known[u]) ring.push_back(width_index[u]);
+        std::nth_element(ring.begin(), ring.begin() + static_cast<long>(ring.size() / 2), ring.end());
+        next[v] = ring[ring.size() / 2];
+      }
+      width_index.swap(next);
+    }
+#pragma omp parallel for schedule(dynamic, 256)
+    for (long v = 0; v < static_cast<long>(nv); ++v) {
+      if (!known[v]) continue;
+      std::vector<std::pair<int, double>> reach, taps;
+      gather(v, reach, static_cast<std::size_t>(width_index[v]) <= near ? near : widths.size() - 1);
+      // A width whose taps fail the hole test (cannot happen above the base width, which passed): keep the base.
+      for (int j = width_index[v]; j >= 0; --j) {
+        int degree = 0;
+        if (taps_at(v, reach, static_cast<std::size_t>(j), taps, &degree)) {
+          filter[v].swap(taps);
+          degree_used[v] = degree;
+          vertex_sigma[v] = widths[j];
+          break;
+        }
+      }
+    }
+  }
+  const double filter_seconds = part.seconds() - noise_seconds;
   const auto filtered = [&](const std::vector<double>& value, std::vector<double>& d) {
 #pragma omp parallel for schedule(static)
     for (long v = 0; v < static_cast<long>(nv); ++v) {
@@ -306,7 +389,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"sigma", sigma},
                       {"residual_passes", passes},
                       {"noise_sigma", noise_sigma},
-                      {"noise_estimated", options.noise_sigma < 0},
+                      {"noise_estimated", estimate},
                       {"filter_widened", widen},
                       {"filter_widths", widths},
                       {"projection", pr.summary()},
@@ -321,7 +404,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"flipped_faces", r.flipped_faces.size()},
                       {"flipped_vertices", r.flipped_vertices.size()},
                       {"needs_refinement", r.needs_refinement}};
-  if (options.noise_sigma < 0) s["noise_estimate"] = noise.summary();
+  if (estimate) s["noise_estimate"] = noise.summary();
+  s["noise_seconds"] = noise_seconds;
+  s["filter_seconds"] = filter_seconds;
   if (discrepancy_rms > 0) s["residual_rms"] = residual_rms, s["discrepancy_rms"] = discrepancy_rms;
   {
     double smean = 0.0, smax = 0.0;
