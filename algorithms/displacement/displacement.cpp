@@ -255,6 +255,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // The chosen widths, smoothed: each vertex takes the median index of its one-ring (ICI's choices
   // jump between neighbours; a patchwork of widths is a patchwork of biases). Then the taps again.
   if (widen && options.ici_smoothing > 0) {
+    const std::vector<int> chosen = width_index;
     for (int pass = 0; pass < options.ici_smoothing; ++pass) {
       std::vector<int> next = width_index;
 #pragma omp parallel for schedule(static)
@@ -270,9 +271,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     }
 #pragma omp parallel for schedule(dynamic, 256)
     for (long v = 0; v < static_cast<long>(nv); ++v) {
-      if (!known[v]) continue;
+      if (!known[v] || width_index[v] == chosen[v]) continue;  // its taps are those of its width
       std::vector<std::pair<int, double>> reach, taps;
-      gather(v, reach, static_cast<std::size_t>(width_index[v]) <= near ? near : widths.size() - 1);
+      gather(v, reach, static_cast<std::size_t>(width_index[v]));
       // A width whose taps fail the hole test (cannot happen above the base width, which passed): keep the base.
       for (int j = width_index[v]; j >= 0; --j) {
         int degree = 0;

@@ -161,7 +161,7 @@ double mean_distance_to_bumpy_sphere(const TriangleMesh& m, double R, double a) 
 TEST_CASE("on noisy data the filter widens where the shape allows: closer to the true surface", "[displacement][noise]") {
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
-  const std::vector<Vec3> points = bumpy_sphere(40000, 0.63, 0.02, 0.004, 2);
+  const std::vector<Vec3> points = bumpy_sphere(15000, 0.63, 0.02, 0.004, 2);
   DisplacementOptions paper;
   paper.noise_sigma = 0.0;  // the fixed filter: noise-free data assumed
   DisplacementOptions adaptive;  // the defaults: noise estimated from the data
@@ -189,7 +189,7 @@ TEST_CASE("on noisy data the filter widens where the shape allows: closer to the
 TEST_CASE("noise-free data keep the paper's fixed filter", "[displacement][noise]") {
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
-  const std::vector<Vec3> points = bumpy_sphere(40000, 0.63, 0.02, 0.0, 3);
+  const std::vector<Vec3> points = bumpy_sphere(15000, 0.63, 0.02, 0.0, 3);
   DisplacementOptions paper;
   paper.noise_sigma = 0.0;
   DisplacementOptions estimated;
