@@ -44,6 +44,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("ici_threshold", ici_threshold,
           "noisy data: a vertex widens its filter while the estimates' intervals +- this x their noise deviation intersect");
   v.field("ici_smoothing", ici_smoothing, "noisy data: one-ring median passes over the widths ICI chose");
+  v.field("max_feet_per_vertex", max_feet_per_vertex,
+          "noisy data: widened filters use every k-th foot when there are more than this x the vertices (0: all)");
   v.field("scale_ratio", scale_ratio, "noisy data: successive filter widths tried differ by this factor");
   v.field("max_sigma_factor", max_sigma_factor, "noisy data: the widest filter tried, x mean edge length");
   v.field("regression_degree", regression_degree,
@@ -75,6 +77,7 @@ void DisplacementOptions::check() const {
   check_range("ici_threshold", ici_threshold, 0.1, 10.0);
   check_range("scale_ratio", scale_ratio, 1.05, 4.0);
   check_range("ici_smoothing", ici_smoothing, 0, 100);
+  check_non_negative("max_feet_per_vertex", max_feet_per_vertex);
   check_range("max_sigma_factor", max_sigma_factor, 0.05, 20.0);
   check_range("regression_degree", regression_degree, 0, 2);
   check_non_negative("discrepancy", discrepancy);
@@ -136,9 +139,19 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // Only converged, located foot points carry the field.
   std::vector<Vec3> feet;
   std::vector<int> foot_id;
-  for (std::size_t k = 0; k < pr.foot_points.size(); ++k)
-    if (pr.valid[k]) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
-  if (feet.empty()) throw AlgorithmError("displacement: no data point could be projected onto f = 0");
+  std::size_t valid = 0;
+  for (std::size_t k = 0; k < pr.foot_points.size(); ++k) valid += pr.valid[k] ? 1 : 0;
+  if (valid == 0) throw AlgorithmError("displacement: no data point could be projected onto f = 0");
+  // Widened filters on dense data: every stride-th foot only (in point order: deterministic). A filter
+  // 4 edges wide would otherwise gather thousands of feet per vertex at 1M points, where a few hundred
+  // already put the noise's share far below the noise (the ICI weighs what it gets).
+  const double per_vertex_cap = options.max_feet_per_vertex * static_cast<double>(nv);
+  const std::size_t stride =
+      widen && options.max_feet_per_vertex > 0 && static_cast<double>(valid) > per_vertex_cap
+          ? static_cast<std::size_t>(std::ceil(static_cast<double>(valid) / per_vertex_cap))
+          : 1;
+  for (std::size_t k = 0, seen = 0; k < pr.foot_points.size(); ++k)
+    if (pr.valid[k] && seen++ % stride == 0) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
   // Cells about half the query radius: a widened filter's ball (up to 8x the base radius) would
   // otherwise visit thousands of empty cells per vertex. Most vertices stop widening early, so their
   // feet are first gathered for the first few widths only (`near`), from a finer grid.
@@ -392,6 +405,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"noise_sigma", noise_sigma},
                       {"noise_estimated", estimate},
                       {"filter_widened", widen},
+                      {"feet_stride", stride},
                       {"filter_widths", widths},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
