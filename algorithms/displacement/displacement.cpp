@@ -142,23 +142,28 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   std::size_t valid = 0;
   for (std::size_t k = 0; k < pr.foot_points.size(); ++k) valid += pr.valid[k] ? 1 : 0;
   if (valid == 0) throw AlgorithmError("displacement: no data point could be projected onto f = 0");
-  // Widened filters on dense data: every stride-th foot only (in point order: deterministic). A filter
-  // 4 edges wide would otherwise gather thousands of feet per vertex at 1M points, where a few hundred
-  // already put the noise's share far below the noise (the ICI weighs what it gets).
-  const double per_vertex_cap = options.max_feet_per_vertex * static_cast<double>(nv);
-  const std::size_t stride =
-      widen && options.max_feet_per_vertex > 0 && static_cast<double>(valid) > per_vertex_cap
-          ? static_cast<std::size_t>(std::ceil(static_cast<double>(valid) / per_vertex_cap))
-          : 1;
-  for (std::size_t k = 0, seen = 0; k < pr.foot_points.size(); ++k)
-    if (pr.valid[k] && seen++ % stride == 0) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < pr.foot_points.size(); ++k)
+    if (pr.valid[k]) feet.push_back(pr.foot_points[k]), foot_id.push_back(static_cast<int>(k));
   // Cells about half the query radius: a widened filter's ball (up to 8x the base radius) would
   // otherwise visit thousands of empty cells per vertex. Most vertices stop widening early, so their
   // feet are first gathered for the first few widths only (`near`), from a finer grid.
   const std::size_t near = std::min<std::size_t>(2, widths.size() - 1);
   const PointGrid foot_grid(feet, 0.5 * options.support * widths[near] * (widen ? 1.0 : 2.0));
+  // The widths beyond `near` on dense data: every stride-th foot only (in point order: deterministic).
+  // A filter 4 edges wide would otherwise gather thousands of feet per vertex at 1M points, where a
+  // few hundred already put the noise's share far below the noise (the ICI weighs what it gets).
+  const double per_vertex_cap = options.max_feet_per_vertex * static_cast<double>(nv);
+  const std::size_t stride =
+      options.max_feet_per_vertex > 0 && static_cast<double>(valid) > per_vertex_cap
+          ? static_cast<std::size_t>(std::ceil(static_cast<double>(valid) / per_vertex_cap))
+          : 1;
+  std::vector<Vec3> far_feet;
+  std::vector<int> far_foot_id;
   std::unique_ptr<PointGrid> far_grid;
-  if (near + 1 < widths.size()) far_grid = std::make_unique<PointGrid>(feet, 0.5 * radius);
+  if (near + 1 < widths.size()) {
+    for (std::size_t i = 0; i < feet.size(); i += stride) far_feet.push_back(feet[i]), far_foot_id.push_back(foot_id[i]);
+    far_grid = std::make_unique<PointGrid>(far_feet, 0.5 * radius);
+  }
 
   // Vertex normals from grad f (paper §3.2), and the Gaussian-weighted mean of the nearby d_k. The
   // neighbourhood is a Euclidean ball around v over the foot points (all on f = 0), which for
@@ -174,9 +179,11 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // v's feet within the widest support that pass the normal test: (point, squared distance).
   const auto gather = [&](long v, std::vector<std::pair<int, double>>& reach, std::size_t upto) {
     reach.clear();
-    const PointGrid& grid = upto <= near ? foot_grid : *far_grid;
+    const bool far = upto > near;
+    const PointGrid& grid = far ? *far_grid : foot_grid;
+    const std::vector<int>& ids = far ? far_foot_id : foot_id;
     grid.for_each_within(base.vertices[v], options.support * widths[upto], [&](int i, double d2) {
-      const int k = foot_id[i];
+      const int k = ids[i];
       if (pr.foot_normals[k].dot(normals[v]) < cos_max) return;
       reach.emplace_back(k, d2);
     });
@@ -405,7 +412,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"noise_sigma", noise_sigma},
                       {"noise_estimated", estimate},
                       {"filter_widened", widen},
-                      {"feet_stride", stride},
+                      {"feet_stride", far_grid ? stride : 1},
                       {"filter_widths", widths},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},

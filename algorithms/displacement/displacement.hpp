@@ -76,8 +76,9 @@ struct DisplacementOptions final : Options {
   /// One-ring median passes over the widths ICI chose (0: ICI's choice per vertex as it is).
   int ici_smoothing = 4;
   double scale_ratio = 1.41421356237;
-  /// Noisy data with more foot points than this x the mesh's vertices: the filter uses every k-th
-  /// foot (k the ratio, rounded up), so its cost stays bounded at 1M points (0: all feet).
+  /// Noisy data with more foot points than this x the mesh's vertices: the widest filters (beyond twice
+  /// the base width) use every k-th foot (k the ratio, rounded up), so their cost stays bounded at 1M
+  /// points (0: all feet).
   double max_feet_per_vertex = 8.0;
   /// The widest filter tried, x the mean edge length.
   double max_sigma_factor = 4.0;
