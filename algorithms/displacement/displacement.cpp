@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "algorithms/displacement/curvature.hpp"
@@ -71,8 +72,10 @@ void DisplacementOptions::check() const {
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
+  std::ostringstream given;
+  given << noise_sigma;
   require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
-          "must be -1 (estimate from the data), 0 (noise-free) or positive, got " + std::to_string(noise_sigma));
+          "must be -1 (estimate from the data), 0 (noise-free) or positive, got " + given.str());
   check_range("noise_floor", noise_floor, 0.0, 1.0);
   check_range("ici_threshold", ici_threshold, 0.1, 10.0);
   check_range("scale_ratio", scale_ratio, 1.05, 4.0);
