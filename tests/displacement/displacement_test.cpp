@@ -13,15 +13,18 @@ using namespace dtsl::test;
 
 namespace {
 
-// A bumpy sphere of mean radius R: R + a sin(3 theta) cos(2 phi) along each direction, plus noise.
+// The bumpy sphere's radius along the unit direction d: R + a sin(3 theta) cos(2 phi).
+double bumpy_radius(const Vec3& d, double R, double a) {
+  const double theta = std::acos(d.z()), phi = std::atan2(d.y(), d.x());
+  return R + a * std::sin(3 * theta) * std::cos(2 * phi);
+}
+
+// n points of the bumpy sphere, each moved along its direction by Gaussian noise (none at 0).
 std::vector<Vec3> bumpy_sphere(int n, double R, double a, double noise, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> N(0.0, noise);
+  std::normal_distribution<double> N(0.0, noise > 0 ? noise : 1.0);
   std::vector<Vec3> out;
-  for (const Vec3& d : fibonacci_directions(n)) {
-    const double theta = std::acos(d.z()), phi = std::atan2(d.y(), d.x());
-    out.push_back((R + a * std::sin(3 * theta) * std::cos(2 * phi)) * d + N(rng) * d);
-  }
+  for (const Vec3& d : fibonacci_directions(n)) out.push_back((bumpy_radius(d, R, a) + (noise > 0 ? N(rng) : 0.0)) * d);
   return out;
 }
 
@@ -153,11 +156,7 @@ namespace {
 // Mean radial distance of the vertices from the noise-free bumpy sphere bumpy_sphere samples.
 double mean_distance_to_bumpy_sphere(const TriangleMesh& m, double R, double a) {
   double sum = 0.0;
-  for (const Vec3& v : m.vertices) {
-    const Vec3 d = v.normalized();
-    const double theta = std::acos(d.z()), phi = std::atan2(d.y(), d.x());
-    sum += std::abs(v.norm() - (R + a * std::sin(3 * theta) * std::cos(2 * phi)));
-  }
+  for (const Vec3& v : m.vertices) sum += std::abs(v.norm() - bumpy_radius(v.normalized(), R, a));
   return sum / static_cast<double>(m.vertices.size());
 }
 
