@@ -9,7 +9,7 @@
 #include "framework/io/io.hpp"
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  if (argc < 2 || argc == 3 || argc > 5) {
     std::fprintf(stderr, "usage: noise_estimate POINTS [NEIGHBOURS SMALL_NEIGHBOURS [QUANTILE]]\n");
     return 2;
   }

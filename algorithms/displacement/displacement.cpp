@@ -224,7 +224,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       out.emplace_back(k, w);
     }
     if (static_cast<int>(out.size()) < options.min_points || !(wsum > 0) || wsum < options.min_weight) return false;
-    // A fixed summation order: the same d whatever the threads (widened: the distance order already is).
+    // A fixed summation order: the same d whatever the threads (widened: the width-group, then grid-cell
+    // order of `reach` already is).
     if (!widen) std::sort(out.begin(), out.end());
     for (auto& tap : out) tap.second /= wsum;
     *degree = j > 0 && options.regression_degree > 0
@@ -297,7 +298,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       if (!known[v] || width_index[v] == chosen[v]) continue;  // its taps are those of its width
       std::vector<std::pair<int, double>> reach, taps;
       gather(v, reach, static_cast<std::size_t>(width_index[v]));
-      // A width whose taps fail the hole test (cannot happen above the base width, which passed): keep the base.
+      // A width whose taps fail the hole test (thinned feet can weigh less than min_weight): the next narrower.
       for (int j = width_index[v]; j >= 0; --j) {
         int degree = 0;
         if (taps_at(v, reach, static_cast<std::size_t>(j), taps, &degree)) {
@@ -322,10 +323,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   filtered(pr.displacements, d);
   // Residual passes: the offset each point still has from the displaced mesh, along its foot normal.
   std::vector<double> residual(points.size(), 0.0);
-  int passes = 0;
-  double residual_rms = 0.0;
-  const double discrepancy_rms = options.discrepancy * noise_sigma;
-  for (; passes < options.residual_passes; ++passes) {
+  const auto residuals = [&] {  // fills `residual`; returns their RMS (in point order: thread-independent)
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < static_cast<long>(points.size()); ++k) {
       residual[k] = 0.0;
@@ -336,16 +334,22 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       for (int c = 0; c < 3; ++c) moved += loc.barycentric[c] * (base.vertices[face[c]] + d[face[c]] * normals[face[c]]);
       residual[k] = (points[k] - moved).dot(pr.foot_normals[k]);
     }
-    if (discrepancy_rms > 0) {  // in point order: the same for every thread count
-      double sum2 = 0.0;
-      std::size_t count = 0;
-      for (std::size_t k = 0; k < points.size(); ++k)
-        if (pr.valid[k]) sum2 += residual[k] * residual[k], ++count;
-      residual_rms = count ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;
-      if (residual_rms <= discrepancy_rms) break;
-    }
+    double sum2 = 0.0;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (pr.valid[k]) sum2 += residual[k] * residual[k], ++count;
+    return count ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0;
+  };
+  int passes = 0;
+  double residual_rms = -1.0;  // of the final mesh, once measured
+  const double discrepancy_rms = options.discrepancy * noise_sigma;
+  for (; passes < options.residual_passes; ++passes) {
+    residual_rms = residuals();
+    if (discrepancy_rms > 0 && residual_rms <= discrepancy_rms) break;
     filtered(residual, d);
+    residual_rms = -1.0;
   }
+  if (noise_sigma > 0 && residual_rms < 0) residual_rms = residuals();  // the summary's figure
   // Spikes: a vertex far off the mean of its neighbours is refilled from them with the holes.
   std::size_t spikes = 0;
   if (options.spike_factor > 0.0) {
@@ -432,15 +436,16 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   if (estimate) s["noise_estimate"] = noise.summary();
   s["noise_seconds"] = noise_seconds;
   s["filter_seconds"] = filter_seconds;
-  if (discrepancy_rms > 0) s["residual_rms"] = residual_rms, s["discrepancy_rms"] = discrepancy_rms;
+  if (noise_sigma > 0) s["residual_rms"] = residual_rms, s["discrepancy_rms"] = discrepancy_rms;
   {
     double smean = 0.0, smax = 0.0;
-    int degrees[3] = {0, 0, 0};
+    int degrees[3] = {0, 0, 0}, filtered_vertices = 0;
     for (std::size_t v = 0; v < nv; ++v) {
+      if (!known[v]) continue;  // hole vertices have no filter
       smean += vertex_sigma[v], smax = std::max(smax, vertex_sigma[v]);
-      if (known[v]) ++degrees[degree_used[v]];
+      ++degrees[degree_used[v]], ++filtered_vertices;
     }
-    s["vertex_sigma_mean"] = smean / static_cast<double>(nv);
+    s["vertex_sigma_mean"] = filtered_vertices ? smean / filtered_vertices : sigma;
     s["vertex_sigma_max"] = smax;
     s["regression_degree_vertices"] = {degrees[0], degrees[1], degrees[2]};
   }

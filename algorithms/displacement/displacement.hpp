@@ -76,9 +76,9 @@ struct DisplacementOptions final : Options {
   /// One-ring median passes over the widths ICI chose (0: ICI's choice per vertex as it is).
   int ici_smoothing = 4;
   double scale_ratio = 1.41421356237;
-  /// Noisy data with more foot points than this x the mesh's vertices: the widest filters (beyond twice
-  /// the base width) use every k-th foot (k the ratio, rounded up), so their cost stays bounded at 1M
-  /// points (0: all feet).
+  /// Noisy data with more foot points than this x the mesh's vertices: the widths beyond the third
+  /// (sigma x scale_ratio^2, twice sigma at the default ratio) take every k-th foot, inner ones included
+  /// (k the ratio, rounded up), so their cost stays bounded at 1M points (0: all feet).
   double max_feet_per_vertex = 8.0;
   /// The widest filter tried, x the mean edge length.
   double max_sigma_factor = 4.0;
@@ -90,8 +90,10 @@ struct DisplacementOptions final : Options {
   /// support the fit (too few, one-sided at a hole's rim) falls back to the next lower degree.
   int regression_degree = 1;
   /// Residual passes stop once the RMS of the points' remaining offsets falls to this x sigma_n
-  /// (Morozov's discrepancy principle: a fit closer than the noise is fitting the noise). 0: all passes.
-  double discrepancy = 1.0;
+  /// (Morozov's discrepancy principle: a fit closer than the noise is fitting the noise). 0 (default):
+  /// all passes. Off because with the widened filters the passes correct bias, not noise: stopped at
+  /// 1.1 sigma_n the noisy test sphere ends twice as far from the truth (tests/displacement).
+  double discrepancy = 0.0;
   NoiseEstimateOptions noise;
   /// Test every triangle for flips, not only those around vertices at risk (a diagnostic).
   bool check_all_faces = false;

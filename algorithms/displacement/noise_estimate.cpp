@@ -126,7 +126,9 @@ NoiseEstimate estimate_noise(const std::vector<Vec3>& points, const NoiseEstimat
     nb.reserve(k_large);
     for (const auto& hit : search) {
       nb.push_back(points[hit.first]);
-      if (nb.size() == 2) nearest[s] = std::sqrt(hit.second);  // the first hit is the point itself
+      // The nearest other point: the first hit is the point itself; duplicates (distance 0) are skipped,
+      // or a cloud with repeated points would read a spacing of 0 and its noise floor would vanish.
+      if (nearest[s] < 0 && hit.second > 0) nearest[s] = std::sqrt(hit.second);
     }
     rms_large[s] = quadric_residual_rms(nb);
     nb.resize(std::min<std::size_t>(nb.size(), k_small));
