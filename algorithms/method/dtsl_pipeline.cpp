@@ -190,6 +190,9 @@ class DtslPipeline final : public Reconstructor {
     if (options_.displacement) {
       clock.restart();
       DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
+      // The data do not change between the refine-on-flip rounds: their noise is estimated once.
+      DisplacementOptions round_displace = options_.displace;
+      if (round_displace.noise_sigma < 0) round_displace.noise_sigma = dr.summary["noise_sigma"].get<double>();
       nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), flip_seconds = nlohmann::json::array();
       for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
         std::vector<Vec3> focus;
@@ -214,7 +217,9 @@ class DtslPipeline final : public Reconstructor {
           break;
         }
         part.restart();
-        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, options_.displace);
+        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, round_displace);
+        for (const char* key : {"noise_estimated", "noise_estimate"})  // what the figure came from
+          if (dr.summary.contains(key)) again.summary[key] = dr.summary[key];
         round_seconds["displace"] = part.seconds();
         flip_seconds.push_back(round_seconds);  // where D-Map's time goes (issue 7)
         flips.push_back(again.flipped_faces.size());
