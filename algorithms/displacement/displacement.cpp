@@ -9,6 +9,7 @@
 #include <string>
 
 #include "algorithms/displacement/curvature.hpp"
+#include "algorithms/displacement/hole_fairing.hpp"
 #include "algorithms/displacement/hole_fill.hpp"
 #include "algorithms/displacement/local_regression.hpp"
 #include "algorithms/displacement/vertex_grid.hpp"
@@ -29,6 +30,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "|d(v) - mean d of its neighbours| above this x the mean edge length: a spike, refilled from the "
           "neighbours (0: off)");
   v.field("fill_holes", fill_holes, "fill hole vertices harmonically from their neighbours (false: d = 0 there)");
+  v.field("hole_fairing", hole_fairing,
+          "then fair the hole vertices' positions with the others fixed: order of the Laplacian minimised (0 off, "
+          "1 membrane, 2 thin plate: continues the rim's slope into the hole, 3)");
   v.field("max_normal_angle_deg", max_normal_angle_deg,
           "ignore foot points whose normal differs from the vertex normal by more than this (thin parts)");
   v.field("curvature_factor", curvature_factor,
@@ -44,6 +48,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "an estimated noise below this x the data's median spacing counts as none (the fixed filter)");
   v.field("ici_threshold", ici_threshold,
           "noisy data: a vertex widens its filter while the estimates' intervals +- this x their noise deviation intersect");
+  v.field("ici_monotone", ici_monotone,
+          "noisy data: stop widening at a width whose noise deviation exceeds the narrower one's (one-sided "
+          "fits at hole rims, thinned feet)");
   v.field("ici_smoothing", ici_smoothing, "noisy data: one-ring median passes over the widths ICI chose");
   v.field("max_feet_per_vertex", max_feet_per_vertex,
           "noisy data: widened filters use every k-th foot when there are more than this x the vertices (0: all)");
@@ -72,6 +79,7 @@ void DisplacementOptions::check() const {
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
+  check_range("hole_fairing", hole_fairing, 0, 3);
   std::ostringstream given;
   given << noise_sigma;
   require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
@@ -267,7 +275,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     for (std::size_t j = 1; j < widths.size(); ++j) {
       if (j > reached) gather(v, reach, reached = widths.size() - 1);
       if (!taps_at(v, reach, j, wider, &degree)) break;
+      const double narrower_dev = dev;
       e = estimate(wider, &dev);
+      if (options.ici_monotone && dev > narrower_dev) break;
       lower = std::max(lower, e - dev), upper = std::min(upper, e + dev);
       if (lower > upper) break;
       taps.swap(wider);
@@ -298,8 +308,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       if (!known[v] || width_index[v] == chosen[v]) continue;  // its taps are those of its width
       std::vector<std::pair<int, double>> reach, taps;
       gather(v, reach, static_cast<std::size_t>(width_index[v]));
-      // A width whose taps fail the hole test (thinned feet can weigh less than min_weight): the next narrower.
+      // A width whose taps fail the hole test (thinned feet can weigh less than min_weight): the next narrower,
+      // from all the feet again once it is one of the `near` widths.
       for (int j = width_index[v]; j >= 0; --j) {
+        if (static_cast<std::size_t>(j) == near && static_cast<std::size_t>(width_index[v]) > near) gather(v, reach, near);
         int degree = 0;
         if (taps_at(v, reach, static_cast<std::size_t>(j), taps, &degree)) {
           filter[v].swap(taps);
@@ -371,8 +383,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
 
   // Holes: harmonic fill so the displaced surface continues across without a crease at the rim.
   HoleFillReport fill;
+  std::vector<std::vector<int>> nb;
   if (options.fill_holes && !r.hole_vertices.empty()) {
-    std::vector<std::vector<int>> nb(nv);
+    nb.resize(nv);
     for (std::size_t v = 0; v < nv; ++v) nb[v] = locator.vertex_neighbours(static_cast<int>(v));
     fill = harmonic_fill(nb, known, d);
   }
@@ -381,6 +394,18 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   r.mesh = base;
   r.mesh.normals = normals;
   for (std::size_t v = 0; v < nv; ++v) r.mesh.vertices[v] = base.vertices[v] + d[v] * normals[v];
+  // Holes, faired (ours): the harmonic fill keeps the base surface's shape in a hole; fairing continues
+  // the displaced rim's slope instead. d becomes the normal part of each faired vertex's move.
+  HoleFairingReport fairing;
+  double fairing_seconds = 0.0;
+  if (options.fill_holes && options.hole_fairing > 0 && !r.hole_vertices.empty()) {
+    Stopwatch fair_timer;
+    std::vector<char> free(nv, 0);
+    for (int v : r.hole_vertices) free[v] = 1;
+    fairing = fair_holes(r.mesh, free, nb, options.hole_fairing - 1);
+    for (int v : r.hole_vertices) d[v] = (r.mesh.vertices[v] - base.vertices[v]).dot(normals[v]);
+    fairing_seconds = fair_timer.seconds();
+  }
   r.vertex_displacement = d;
 
   // Curvature check (paper §3.2): vertices whose |d| approaches the smaller radius; flips in their one-ring.
@@ -397,6 +422,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       for (int fi : locator.vertex_faces(static_cast<int>(v))) candidate[fi] = 1;
     }
   }
+  if (fairing.vertices > 0)  // faired vertices also move tangentially: their faces are tested too
+    for (int v : r.hole_vertices)
+      for (int fi : locator.vertex_faces(v)) candidate[fi] = 1;
   std::vector<int> candidates;
   for (std::size_t fi = 0; fi < candidate.size(); ++fi)
     if (candidate[fi]) candidates.push_back(static_cast<int>(fi));
@@ -426,6 +454,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"spike_vertices", spikes},
                       {"hole_vertices_filled", options.fill_holes ? fill.unknown - fill.unreached : 0},
                       {"hole_vertices_unreached", fill.unreached},
+                      {"hole_vertices_faired", fairing.vertices},
+                      {"hole_regions_faired", fairing.regions},
+                      {"hole_fairing_failures", fairing.failed_regions},
+                      {"hole_fairing_seconds", fairing_seconds},
                       {"displacement_mean_abs", dmean / static_cast<double>(nv)},
                       {"displacement_max_abs", dmax},
                       {"at_risk_vertices", r.at_risk_vertices.size()},

@@ -41,6 +41,10 @@ struct DisplacementOptions final : Options {
   double spike_factor = 3.0;
   /// Fill hole vertices harmonically from their neighbours; false leaves them on the base surface (d = 0).
   bool fill_holes = true;
+  /// Then fair the hole vertices' positions (hole_fairing.hpp; ours), with the data-supported
+  /// vertices fixed: the order of the Laplacian minimised, 0 off (the harmonic displacements above
+  /// only), 1 membrane, 2 thin plate (bi-Laplacian: continues the rim's slope into the hole), 3.
+  int hole_fairing = 2;
   /// Foot points whose normal makes a larger angle than this (degrees) with the vertex normal are
   /// ignored: on a thin part the other side's data lies within the support but belongs elsewhere.
   double max_normal_angle_deg = 90.0;
@@ -72,7 +76,11 @@ struct DisplacementOptions final : Options {
   /// [d_i - ici_threshold s_i, d_i + ici_threshold s_i], i <= j, still share a point. A wider filter
   /// averages more noise away until its bias (the shape it flattens) exceeds the noise it removes;
   /// smooth parts get a wide filter, fine relief keeps the narrow one.
-  double ici_threshold = 1.5;
+  double ici_threshold = 1.0;
+  /// Stop widening at a width whose noise deviation s_j exceeds the narrower one's (ours): ICI assumes
+  /// that a wider filter averages more noise away; a one-sided linear fit at a hole's rim, or a filter
+  /// over thinned feet, can be wider and noisier, and its wider interval would pass the test.
+  bool ici_monotone = false;
   /// One-ring median passes over the widths ICI chose (0: ICI's choice per vertex as it is).
   int ici_smoothing = 4;
   double scale_ratio = 1.41421356237;

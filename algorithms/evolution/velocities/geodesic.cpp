@@ -6,25 +6,36 @@
 // stopping rule on the data distance ends it.
 #include "algorithms/evolution/velocities/velocities.hpp"
 
+#include <algorithm>
+
 namespace dtsl {
 
 namespace {
 
 struct GeodesicVelocityOptions final : Options {
   double lambda = 1.0;
+  double max_smoothing = 1e9;
 
   void visit(FieldVisitor& v) override {
     v.field("lambda", lambda,
             "weight of the curvature term: v = -(grad d . n + lambda d kappa); the d factor makes it "
             "vanish on the data");
+    v.field("max_smoothing", max_smoothing,
+            "cap on |lambda d kappa|: below 1 the data's pull (|grad d . n| up to 1) outweighs the "
+            "curvature term, so thin parts sampled more sparsely than they are thick are not eroded");
   }
-  void check() const override { check_range("lambda", lambda, 0.0, 100.0); }
+  void check() const override {
+    check_range("lambda", lambda, 0.0, 100.0);
+    check_range("max_smoothing", max_smoothing, 0.0, 1e9);
+  }
 };
 
 class GeodesicVelocity final : public VelocityWith<GeodesicVelocityOptions, GeodesicVelocity> {
  public:
   double speed(const VelocitySample& s) const override {
-    return -(s.distance_gradient.dot(s.normal) + options_.lambda * s.distance * s.curvature);
+    const double smoothing = std::clamp(options_.lambda * s.distance * s.curvature, -options_.max_smoothing,
+                                        options_.max_smoothing);
+    return -(s.distance_gradient.dot(s.normal) + smoothing);
   }
 };
 

@@ -1,0 +1,103 @@
+#include "algorithms/displacement/hole_fairing.hpp"
+
+#ifndef CGAL_EIGEN3_ENABLED
+#define CGAL_EIGEN3_ENABLED  // fair() solves with Eigen's SparseLU; Eigen is already a dependency of the core
+#endif
+#include <CGAL/Polygon_mesh_processing/fair.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <string>
+
+#include "framework/core/error.hpp"
+
+namespace dtsl {
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+}  // namespace
+
+HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
+                             const std::vector<std::vector<int>>& neighbours, int continuity) {
+  const std::size_t nv = mesh.vertices.size();
+  if (free.size() != nv || neighbours.size() != nv)
+    throw AlgorithmError("hole fairing: " + std::to_string(free.size()) + " free flags and " +
+                         std::to_string(neighbours.size()) + " neighbour lists for " + std::to_string(nv) +
+                         " vertices");
+  if (continuity < 0 || continuity > 2)
+    throw AlgorithmError("hole fairing: continuity must be 0, 1 or 2, got " + std::to_string(continuity));
+  HoleFairingReport report;
+
+  // The regions: connected free vertices, each with or without a fixed neighbour to continue from.
+  std::vector<int> region_of(nv, -1);
+  std::vector<std::vector<int>> regions;
+  std::vector<char> anchored;
+  for (std::size_t seed = 0; seed < nv; ++seed) {
+    if (!free[seed] || region_of[seed] >= 0) continue;
+    const int id = static_cast<int>(regions.size());
+    regions.emplace_back();
+    anchored.push_back(0);
+    std::vector<int> stack{static_cast<int>(seed)};
+    region_of[seed] = id;
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      regions[id].push_back(v);
+      for (int u : neighbours[v]) {
+        if (!free[u]) {
+          anchored[id] = 1;
+        } else if (region_of[u] < 0) {
+          region_of[u] = id;
+          stack.push_back(u);
+        }
+      }
+    }
+  }
+  bool any = false;
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    if (anchored[i]) any = true;
+    else report.unanchored += regions[i].size();
+  }
+  if (!any) return report;
+
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> handle(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const Vec3& p = mesh.vertices[v];
+    handle[v] = sm.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z()));
+  }
+  for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    const Face& f = mesh.faces[fi];
+    if (sm.add_face(handle[f[0]], handle[f[1]], handle[f[2]]) == SurfaceMesh::null_face())
+      throw AlgorithmError("hole fairing: face " + std::to_string(fi) +
+                           " makes the mesh non-manifold or inconsistently oriented");
+  }
+  // Deterministic: regions in the order of their first vertex, each an independent solve.
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    if (!anchored[i]) continue;
+    std::vector<SurfaceMesh::Vertex_index> vs;
+    vs.reserve(regions[i].size());
+    for (int v : regions[i]) vs.push_back(handle[v]);
+    if (!CGAL::Polygon_mesh_processing::fair(sm, vs, CGAL::parameters::fairing_continuity(continuity))) {
+      ++report.failed_regions;
+      for (int v : regions[i]) {  // fair() may have written part of the region: restore it
+        const Vec3& p = mesh.vertices[v];
+        sm.point(handle[v]) = Kernel::Point_3(p.x(), p.y(), p.z());
+      }
+      continue;
+    }
+    ++report.regions;
+    report.vertices += regions[i].size();
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!free[v]) continue;
+    const Kernel::Point_3& p = sm.point(handle[v]);
+    mesh.vertices[v] = Vec3(p.x(), p.y(), p.z());
+  }
+  return report;
+}
+
+}  // namespace dtsl

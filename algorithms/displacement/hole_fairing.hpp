@@ -1,0 +1,33 @@
+// Hole fill by fairing (ours; Liepa, "Filling holes in meshes", SGP 2003; Botsch & Kobbelt's
+// membrane / thin-plate fairing): the vertices with no data near them are moved to minimise a discrete
+// Laplacian energy with every other vertex fixed. The harmonic fill of the displacements
+// (hole_fill.hpp) keeps the base surface's shape inside a hole, and Phase 1 leaves a hole spanned by a
+// near-minimal surface: flat across a plane cut, dented into a convex part. Thin-plate fairing
+// (continuity 1: the bi-Laplacian, tangent-continuous with the two fixed rings around the hole)
+// instead continues the surface's slope from the rim, as the shape around it would.
+// CGAL::Polygon_mesh_processing::fair (cotangent weights, Voronoi areas, sparse LU) solves each hole.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "framework/core/types.hpp"
+
+namespace dtsl {
+
+struct HoleFairingReport {
+  std::size_t regions = 0;          ///< connected sets of free vertices faired
+  std::size_t vertices = 0;         ///< free vertices moved
+  std::size_t unanchored = 0;       ///< free vertices of regions without a fixed neighbour (left as they were)
+  std::size_t failed_regions = 0;   ///< regions whose solve failed (left as they were)
+};
+
+/// Fairs the vertices with free[v] != 0, region by region (connected through `neighbours`), with the
+/// other vertices fixed; continuity 0 (membrane: Laplacian), 1 (thin plate: bi-Laplacian) or 2. A
+/// region with no fixed neighbour has nothing to continue and is left as it is. `mesh` must be an
+/// edge-manifold, consistently oriented triangle mesh (AlgorithmError otherwise); its normals, if
+/// any, are left to the caller.
+HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
+                             const std::vector<std::vector<int>>& neighbours, int continuity);
+
+}  // namespace dtsl
