@@ -82,7 +82,7 @@ TEST_CASE("displacement on an ellipsoid and a rounded box: lower error, no flips
   }
 }
 
-TEST_CASE("holes: harmonic fill spans a removed ball without a crease", "[displacement][holes]") {
+TEST_CASE("holes: harmonic fill and thin-plate fairing span a removed ball without a crease", "[displacement][holes]") {
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
   const Vec3 centre = Vec3(0.2, 0.3, 0.5).normalized() * 0.63;
@@ -97,6 +97,8 @@ TEST_CASE("holes: harmonic fill spans a removed ball without a crease", "[displa
   const DisplacementResult b = displace_mesh(f, base, points, unfilled);
   REQUIRE(a.hole_vertices.size() > 50);
   CHECK(a.summary["hole_vertices_filled"].get<std::size_t>() == a.hole_vertices.size());
+  CHECK(a.summary["hole_vertices_faired"].get<std::size_t>() == a.hole_vertices.size());
+  CHECK(a.summary["hole_fairing_failures"].get<std::size_t>() == 0);
   CHECK(mesh_stats(a.mesh).watertight);
   CHECK(a.flipped_faces.empty());
 

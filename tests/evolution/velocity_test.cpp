@@ -74,6 +74,15 @@ TEST_CASE("velocities: signs of the formulas", "[evolution][velocity]") {
     CHECK(v->speed(sample(0.5, away_outward)) == Approx(-1.0));
     CHECK(v->speed(sample(0.001, away_inward)) == Approx(1.0));
     CHECK(v->speed(sample(0.5, sideways)) == Approx(0.0).margin(1e-15));  // stalls over a concavity
+    // max_smoothing caps |lambda d kappa|: a thin rim (kappa 40, d 0.05 between samples) is eroded at
+    // lambda d kappa = 2 uncapped, at 0.5 capped, so the data's pull (+-1) still holds it.
+    apply_assignment(v->options(), "lambda", "1", "velocity");
+    CHECK(v->speed(sample(0.05, away_inward, 40.0)) == Approx(-1.0));  // 1 - 2: pulled through the data
+    apply_assignment(v->options(), "max_smoothing", "0.5", "velocity");
+    CHECK(v->speed(sample(0.05, away_inward, 40.0)) == Approx(0.5));    // 1 - 0.5: held at the data
+    CHECK(v->speed(sample(0.05, away_inward, -40.0)) == Approx(1.5));   // the cap is symmetric
+    CHECK(v->speed(sample(0.05, away_inward, 4.0)) == Approx(0.8));     // below the cap: unchanged
+    CHECK_THROWS_AS(apply_assignment(v->options(), "max_smoothing", "-1", "velocity"), ConfigError);
   }
   SECTION("distance_balloon: fast far away, zero on the data, pushes back, reaches into concavities") {
     auto v = make("distance_balloon");
