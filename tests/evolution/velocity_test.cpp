@@ -77,6 +77,7 @@ TEST_CASE("velocities: signs of the formulas", "[evolution][velocity]") {
     // max_smoothing caps |lambda d kappa|: a thin rim (kappa 40, d 0.05 between samples) is eroded at
     // lambda d kappa = 2 uncapped, at 0.5 capped, so the data's pull (+-1) still holds it.
     apply_assignment(v->options(), "lambda", "1", "velocity");
+    apply_assignment(v->options(), "max_smoothing", "1e9", "velocity");
     CHECK(v->speed(sample(0.05, away_inward, 40.0)) == Approx(-1.0));  // 1 - 2: pulled through the data
     apply_assignment(v->options(), "max_smoothing", "0.5", "velocity");
     CHECK(v->speed(sample(0.05, away_inward, 40.0)) == Approx(0.5));    // 1 - 0.5: held at the data
