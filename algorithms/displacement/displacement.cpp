@@ -398,12 +398,17 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // the displaced rim's slope instead. d becomes the normal part of each faired vertex's move.
   HoleFairingReport fairing;
   double fairing_seconds = 0.0;
+  std::string fairing_error;
   if (options.fill_holes && options.hole_fairing > 0 && !r.hole_vertices.empty()) {
     Stopwatch fair_timer;
     std::vector<char> free(nv, 0);
     for (int v : r.hole_vertices) free[v] = 1;
-    fairing = fair_holes(r.mesh, free, nb, options.hole_fairing - 1);
-    for (int v : r.hole_vertices) d[v] = (r.mesh.vertices[v] - base.vertices[v]).dot(normals[v]);
+    try {
+      fairing = fair_holes(r.mesh, free, nb, options.hole_fairing - 1);
+      for (int v : r.hole_vertices) d[v] = (r.mesh.vertices[v] - base.vertices[v]).dot(normals[v]);
+    } catch (const AlgorithmError& e) {  // a base mesh CGAL cannot take: the harmonic fill stays, and says so
+      fairing_error = e.what();
+    }
     fairing_seconds = fair_timer.seconds();
   }
   r.vertex_displacement = d;
@@ -466,6 +471,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"flipped_vertices", r.flipped_vertices.size()},
                       {"needs_refinement", r.needs_refinement}};
   if (estimate) s["noise_estimate"] = noise.summary();
+  if (!fairing_error.empty()) s["hole_fairing_skipped"] = fairing_error;
   s["noise_seconds"] = noise_seconds;
   s["filter_seconds"] = filter_seconds;
   if (noise_sigma > 0) s["residual_rms"] = residual_rms, s["discrepancy_rms"] = discrepancy_rms;

@@ -120,6 +120,22 @@ TEST_CASE("holes: harmonic fill and thin-plate fairing span a removed ball witho
   for (int v : a.hole_vertices) CHECK(a.mesh.vertices[v].norm() == Approx(0.63).margin(0.012));
 }
 
+TEST_CASE("holes: a base mesh the fairing cannot take keeps the harmonic fill and says why", "[displacement][holes]") {
+  const SphereSdf f(0.6);
+  TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.05);
+  base.faces.push_back(base.faces.front());  // a repeated face: two faces too many on its edges
+  const Vec3 centre = Vec3(0.2, 0.3, 0.5).normalized() * 0.63;
+  std::vector<Vec3> points;
+  for (const Vec3& d : fibonacci_directions(8000))
+    if ((0.63 * d - centre).norm() > 0.25) points.push_back(0.63 * d);
+  const DisplacementResult r = displace_mesh(f, base, points, DisplacementOptions{});
+  REQUIRE(r.hole_vertices.size() > 10);
+  CHECK(r.summary["hole_vertices_faired"].get<std::size_t>() == 0);
+  CHECK(r.summary["hole_fairing_skipped"].get<std::string>().find("non-manifold") != std::string::npos);
+  CHECK(r.summary["hole_vertices_filled"].get<std::size_t>() == r.hole_vertices.size());
+  for (int v : r.hole_vertices) CHECK(r.mesh.vertices[v].norm() == Approx(0.63).margin(0.012));
+}
+
 TEST_CASE("curvature check: a large displacement at a thin concave neck is flagged", "[displacement][curvature]") {
   // Neck radius 0.08, concave along the axis with radius ~ 0.08 / 1.5 ~ 0.05 (R'' ~ 18.7 at x = 0).
   const Dumbbell f(0.08, 1.5);
