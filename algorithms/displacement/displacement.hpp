@@ -116,8 +116,8 @@ struct DisplacementOptions final : Options {
 
 struct DisplacementResult {
   TriangleMesh mesh;                        ///< the displaced mesh, vertex normals from grad f at the base vertex
-  std::vector<double> vertex_displacement;  ///< d(v) per vertex
-  std::vector<int> hole_vertices;           ///< vertices whose d(v) came from the hole fill
+  std::vector<double> vertex_displacement;  ///< d(v) per vertex; for a faired hole vertex the normal part of its move
+  std::vector<int> hole_vertices;           ///< vertices without data near them: filled, then faired (hole_fairing)
   std::vector<int> at_risk_vertices;        ///< |d(v)| >= curvature_factor x smaller curvature radius
   std::vector<int> flipped_faces;           ///< faces whose normal reversed (among those tested)
   std::vector<int> flipped_vertices;        ///< vertices of flipped faces: where to refine the level set

@@ -7,6 +7,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <cmath>
 #include <string>
 
 #include "framework/core/error.hpp"
@@ -75,15 +76,24 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
       throw AlgorithmError("hole fairing: face " + std::to_string(fi) +
                            " makes the mesh non-manifold or inconsistently oriented");
   }
-  // Deterministic: regions in the order of their first vertex, each an independent solve.
+  // Deterministic: regions in the order of their first vertex, one solve each. A region's rows reach k+1
+  // rings out, so one within that reach of an earlier region sees its faired positions (fixed).
   for (std::size_t i = 0; i < regions.size(); ++i) {
     if (!anchored[i]) continue;
     std::vector<SurfaceMesh::Vertex_index> vs;
     vs.reserve(regions[i].size());
     for (int v : regions[i]) vs.push_back(handle[v]);
-    if (!CGAL::Polygon_mesh_processing::fair(sm, vs, CGAL::parameters::fairing_continuity(continuity))) {
+    const bool solved = CGAL::Polygon_mesh_processing::fair(sm, vs, CGAL::parameters::fairing_continuity(continuity));
+    // fair() moves nothing when its solve fails, but does not check a solve that "succeeds": a zero-length
+    // edge or a zero Voronoi area near the region gives NaN weights. Such a region keeps its positions.
+    bool finite = solved;
+    for (int v : regions[i]) {
+      const Kernel::Point_3& p = sm.point(handle[v]);
+      finite = finite && std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+    }
+    if (!finite) {
       ++report.failed_regions;
-      for (int v : regions[i]) {  // fair() may have written part of the region: restore it
+      for (int v : regions[i]) {
         const Vec3& p = mesh.vertices[v];
         sm.point(handle[v]) = Kernel::Point_3(p.x(), p.y(), p.z());
       }

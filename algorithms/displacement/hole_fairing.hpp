@@ -24,9 +24,10 @@ struct HoleFairingReport {
 
 /// Fairs the vertices with free[v] != 0, region by region (connected through `neighbours`), with the
 /// other vertices fixed; continuity 0 (membrane: Laplacian), 1 (thin plate: bi-Laplacian) or 2. A
-/// region with no fixed neighbour has nothing to continue and is left as it is. `mesh` must be an
-/// edge-manifold, consistently oriented triangle mesh (AlgorithmError otherwise); its normals, if
-/// any, are left to the caller.
+/// region with no fixed neighbour has nothing to continue and is left as it is, and so is one whose
+/// solve fails or gives non-finite positions (counted). `mesh` must be a manifold (edges and vertices),
+/// consistently oriented triangle mesh without faces that repeat a vertex (AlgorithmError otherwise,
+/// before anything moves); its normals, if any, are left to the caller.
 HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
                              const std::vector<std::vector<int>>& neighbours, int continuity);
 

@@ -99,6 +99,23 @@ TEST_CASE("holes: harmonic fill and thin-plate fairing span a removed ball witho
   CHECK(a.summary["hole_vertices_filled"].get<std::size_t>() == a.hole_vertices.size());
   CHECK(a.summary["hole_vertices_faired"].get<std::size_t>() == a.hole_vertices.size());
   CHECK(a.summary["hole_fairing_failures"].get<std::size_t>() == 0);
+  // d is the normal part of every move; without fairing the move is exactly d n (Eq. 2), faired hole
+  // vertices also slide, and nothing else changes between the two.
+  DisplacementOptions harmonic_only;
+  harmonic_only.hole_fairing = 0;
+  const DisplacementResult h = displace_mesh(f, base, points, harmonic_only);
+  CHECK(h.summary["hole_vertices_faired"].get<std::size_t>() == 0);
+  std::vector<char> hole(base.vertices.size(), 0);
+  for (int v : a.hole_vertices) hole[v] = 1;
+  double slide = 0.0;
+  for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+    const Vec3 move = a.mesh.vertices[v] - base.vertices[v];
+    CHECK(move.dot(a.mesh.normals[v]) == Approx(a.vertex_displacement[v]).margin(1e-12));
+    CHECK((h.mesh.vertices[v] - (base.vertices[v] + h.vertex_displacement[v] * h.mesh.normals[v])).norm() < 1e-12);
+    if (!hole[v]) CHECK(a.mesh.vertices[v] == h.mesh.vertices[v]);
+    else slide = std::max(slide, (move - a.vertex_displacement[v] * a.mesh.normals[v]).norm());
+  }
+  CHECK(slide > 0.0);
   CHECK(mesh_stats(a.mesh).watertight);
   CHECK(a.flipped_faces.empty());
 
