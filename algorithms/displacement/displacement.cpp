@@ -383,12 +383,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
 
   // Holes: harmonic fill so the displaced surface continues across without a crease at the rim.
   HoleFillReport fill;
-  std::vector<std::vector<int>> nb;
-  if (options.fill_holes && !r.hole_vertices.empty()) {
-    nb.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v) nb[v] = locator.vertex_neighbours(static_cast<int>(v));
-    fill = harmonic_fill(nb, known, d);
-  }
+  if (options.fill_holes && !r.hole_vertices.empty()) fill = harmonic_fill(locator.vertex_neighbours(), known, d);
 
   // Eq. 2: v <- v + d(v) n(v).
   r.mesh = base;
@@ -404,7 +399,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     std::vector<char> free(nv, 0);
     for (int v : r.hole_vertices) free[v] = 1;
     try {
-      fairing = fair_holes(r.mesh, free, nb, options.hole_fairing - 1);
+      fairing = fair_holes(r.mesh, free, locator.vertex_neighbours(), options.hole_fairing - 1);
       for (int v : r.hole_vertices) d[v] = (r.mesh.vertices[v] - base.vertices[v]).dot(normals[v]);
     } catch (const AlgorithmError& e) {  // a base mesh CGAL cannot take: the harmonic fill stays, and says so
       fairing_error = e.what();

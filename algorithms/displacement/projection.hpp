@@ -74,6 +74,8 @@ class MeshLocator {
   const TriangleMesh& mesh() const { return *mesh_; }
   const std::vector<int>& vertex_faces(int v) const { return vertex_faces_[v]; }
   const std::vector<int>& vertex_neighbours(int v) const { return vertex_neighbours_[v]; }
+  /// Every vertex's neighbours at once (for the graph solves of the hole fill and fairing).
+  const std::vector<std::vector<int>>& vertex_neighbours() const { return vertex_neighbours_; }
   double mean_edge_length() const { return mean_edge_; }
 
  private:
