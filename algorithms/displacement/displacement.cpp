@@ -33,6 +33,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("hole_fairing", hole_fairing,
           "then fair the hole vertices' positions with the others fixed: order of the Laplacian minimised (0 off, "
           "1 membrane, 2 thin plate: continues the rim's slope into the hole, 3)");
+  v.field("hole_fairing_max_vertices", hole_fairing_max_vertices,
+          "a hole region with more vertices than this keeps the harmonic fill (0: no limit; the solve grows "
+          "faster than the region)");
   v.field("max_normal_angle_deg", max_normal_angle_deg,
           "ignore foot points whose normal differs from the vertex normal by more than this (thin parts)");
   v.field("curvature_factor", curvature_factor,
@@ -80,6 +83,7 @@ void DisplacementOptions::check() const {
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
   check_range("hole_fairing", hole_fairing, 0, 3);
+  check_non_negative("hole_fairing_max_vertices", hole_fairing_max_vertices);
   std::ostringstream given;
   given << noise_sigma;
   require(noise_sigma == -1.0 || noise_sigma >= 0.0, "noise_sigma",
@@ -399,7 +403,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     std::vector<char> free(nv, 0);
     for (int v : r.hole_vertices) free[v] = 1;
     try {
-      fairing = fair_holes(r.mesh, free, locator.vertex_neighbours(), options.hole_fairing - 1);
+      fairing = fair_holes(r.mesh, free, locator.vertex_neighbours(), options.hole_fairing - 1,
+                           static_cast<std::size_t>(options.hole_fairing_max_vertices));
       for (int v : r.hole_vertices) d[v] = (r.mesh.vertices[v] - base.vertices[v]).dot(normals[v]);
     } catch (const AlgorithmError& e) {  // a base mesh CGAL cannot take: the harmonic fill stays, and says so
       fairing_error = e.what();
@@ -457,6 +462,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"hole_vertices_faired", fairing.vertices},
                       {"hole_regions_faired", fairing.regions},
                       {"hole_fairing_failures", fairing.failed_regions},
+                      {"hole_regions_too_large", fairing.oversized_regions},
+                      {"hole_region_max_vertices", fairing.largest_region},
                       {"hole_fairing_seconds", fairing_seconds},
                       {"displacement_mean_abs", dmean / static_cast<double>(nv)},
                       {"displacement_max_abs", dmax},

@@ -7,6 +7,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -22,7 +23,8 @@ using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 }  // namespace
 
 HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
-                             const std::vector<std::vector<int>>& neighbours, int continuity) {
+                             const std::vector<std::vector<int>>& neighbours, int continuity,
+                             std::size_t max_region_vertices) {
   const std::size_t nv = mesh.vertices.size();
   if (free.size() != nv || neighbours.size() != nv)
     throw AlgorithmError("hole fairing: " + std::to_string(free.size()) + " free flags and " +
@@ -57,10 +59,19 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
       }
     }
   }
+  std::vector<char> solve(regions.size(), 0);
   bool any = false;
   for (std::size_t i = 0; i < regions.size(); ++i) {
-    if (anchored[i]) any = true;
-    else report.unanchored += regions[i].size();
+    report.largest_region = std::max(report.largest_region, regions[i].size());
+    if (!anchored[i]) {
+      report.unanchored += regions[i].size();
+    } else if (max_region_vertices > 0 && regions[i].size() > max_region_vertices) {
+      ++report.oversized_regions;
+      report.oversized_vertices += regions[i].size();
+    } else {
+      solve[i] = 1;
+      any = true;
+    }
   }
   if (!any) return report;
 
@@ -79,7 +90,7 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
   // Deterministic: regions in the order of their first vertex, one solve each. A region's rows reach k+1
   // rings out, so one within that reach of an earlier region sees its faired positions (fixed).
   for (std::size_t i = 0; i < regions.size(); ++i) {
-    if (!anchored[i]) continue;
+    if (!solve[i]) continue;
     std::vector<SurfaceMesh::Vertex_index> vs;
     vs.reserve(regions[i].size());
     for (int v : regions[i]) vs.push_back(handle[v]);

@@ -20,15 +20,21 @@ struct HoleFairingReport {
   std::size_t vertices = 0;         ///< free vertices moved
   std::size_t unanchored = 0;       ///< free vertices of regions without a fixed neighbour (left as they were)
   std::size_t failed_regions = 0;   ///< regions whose solve failed (left as they were)
+  std::size_t oversized_regions = 0;  ///< regions above max_region_vertices (left as they were)
+  std::size_t oversized_vertices = 0; ///< their free vertices
+  std::size_t largest_region = 0;   ///< free vertices of the largest region, faired or not
 };
 
 /// Fairs the vertices with free[v] != 0, region by region (connected through `neighbours`), with the
 /// other vertices fixed; continuity 0 (membrane: Laplacian), 1 (thin plate: bi-Laplacian) or 2. A
 /// region with no fixed neighbour has nothing to continue and is left as it is, and so is one whose
-/// solve fails or gives non-finite positions (counted). `mesh` must be a manifold (edges and vertices),
+/// solve fails or gives non-finite positions (counted), and so is one with more than
+/// `max_region_vertices` free vertices (0: no limit): the sparse LU's fill grows faster than the region
+/// (11k free vertices take 0.5 s, 20k 3 s, 67k 11 s). `mesh` must be a manifold (edges and vertices),
 /// consistently oriented triangle mesh without faces that repeat a vertex (AlgorithmError otherwise,
 /// before anything moves); its normals, if any, are left to the caller.
 HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
-                             const std::vector<std::vector<int>>& neighbours, int continuity);
+                             const std::vector<std::vector<int>>& neighbours, int continuity,
+                             std::size_t max_region_vertices = 0);
 
 }  // namespace dtsl

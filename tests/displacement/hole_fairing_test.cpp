@@ -100,6 +100,42 @@ TEST_CASE("hole fairing: a plane stays a plane", "[displacement][holes]") {
   }
 }
 
+TEST_CASE("hole fairing: a region above the size limit keeps its positions, a smaller one is faired",
+          "[displacement][holes]") {
+  const double r = 0.6;
+  const SphereSdf f(r);
+  const TriangleMesh sphere = base_mesh(f, Vec3(r, 0, 0), 0.05);
+  // Two flattened caps on opposite sides, the second about four times the first's area.
+  TriangleMesh flat = sphere;
+  std::vector<char> free(sphere.vertices.size(), 0), small(sphere.vertices.size(), 0);
+  std::size_t small_count = 0, large_count = 0;
+  for (std::size_t v = 0; v < sphere.vertices.size(); ++v) {
+    const double z = sphere.vertices[v].z(), plane = z > 0 ? r * std::cos(0.35) : -r * std::cos(0.7);
+    if (z > 0 ? z <= plane : z >= plane) continue;
+    free[v] = 1;
+    flat.vertices[v].z() = plane;
+    if (z > 0) small[v] = 1, ++small_count;
+    else ++large_count;
+  }
+  REQUIRE(large_count > 2 * small_count);
+  const auto nb = vertex_neighbours(sphere);
+  TriangleMesh faired = flat;
+  const HoleFairingReport rep = fair_holes(faired, free, nb, 1, (small_count + large_count) / 2);
+  CHECK(rep.regions == 1);
+  CHECK(rep.vertices == small_count);
+  CHECK(rep.oversized_regions == 1);
+  CHECK(rep.oversized_vertices == large_count);
+  CHECK(rep.largest_region == large_count);
+  for (std::size_t v = 0; v < sphere.vertices.size(); ++v)
+    if (free[v] && !small[v]) CHECK(faired.vertices[v] == flat.vertices[v]);
+  CHECK(sphere_deviation(faired, small, r) < 0.5 * sphere_deviation(flat, small, r));
+  // Without a limit both are faired.
+  TriangleMesh both = flat;
+  const HoleFairingReport all = fair_holes(both, free, nb, 1, 0);
+  CHECK(all.regions == 2);
+  CHECK(all.oversized_regions == 0);
+}
+
 TEST_CASE("hole fairing: nothing to continue from, and bad input", "[displacement][holes][errors]") {
   const SphereSdf f(0.6);
   const TriangleMesh m = base_mesh(f, Vec3(0.6, 0, 0), 0.05);
