@@ -34,8 +34,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "then fair the hole vertices' positions with the others fixed: order of the Laplacian minimised (0 off, "
           "1 membrane, 2 thin plate: continues the rim's slope into the hole, 3)");
   v.field("hole_fairing_max_vertices", hole_fairing_max_vertices,
-          "a hole region with more vertices than this keeps the harmonic fill (0: no limit; the solve grows "
-          "faster than the region)");
+          "a hole region with more vertices than this keeps the harmonic fill (0: no limit; a bound on the "
+          "fairing's cost, which grows faster than the region)");
   v.field("max_normal_angle_deg", max_normal_angle_deg,
           "ignore foot points whose normal differs from the vertex normal by more than this (thin parts)");
   v.field("curvature_factor", curvature_factor,
@@ -462,6 +462,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"hole_vertices_faired", fairing.vertices},
                       {"hole_regions_faired", fairing.regions},
                       {"hole_fairing_failures", fairing.failed_regions},
+                      {"hole_regions_weakly_anchored", fairing.weakly_anchored_regions},
                       {"hole_regions_too_large", fairing.oversized_regions},
                       {"hole_region_max_vertices", fairing.largest_region},
                       {"hole_fairing_seconds", fairing_seconds},

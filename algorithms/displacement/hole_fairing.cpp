@@ -34,15 +34,15 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
     throw AlgorithmError("hole fairing: continuity must be 0, 1 or 2, got " + std::to_string(continuity));
   HoleFairingReport report;
 
-  // The regions: connected free vertices, each with or without a fixed neighbour to continue from.
-  std::vector<int> region_of(nv, -1);
+  // The regions: connected free vertices, each with the fixed vertices next to it (its rim).
+  std::vector<int> region_of(nv, -1), rim_of(nv, -1);
   std::vector<std::vector<int>> regions;
-  std::vector<char> anchored;
+  std::vector<std::size_t> rim;
   for (std::size_t seed = 0; seed < nv; ++seed) {
     if (!free[seed] || region_of[seed] >= 0) continue;
     const int id = static_cast<int>(regions.size());
     regions.emplace_back();
-    anchored.push_back(0);
+    rim.push_back(0);
     std::vector<int> stack{static_cast<int>(seed)};
     region_of[seed] = id;
     while (!stack.empty()) {
@@ -51,7 +51,7 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
       regions[id].push_back(v);
       for (int u : neighbours[v]) {
         if (!free[u]) {
-          anchored[id] = 1;
+          if (rim_of[u] != id) rim_of[u] = id, ++rim[id];
         } else if (region_of[u] < 0) {
           region_of[u] = id;
           stack.push_back(u);
@@ -59,15 +59,23 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
       }
     }
   }
+  // A hole in sampled data is bounded by data: a disc of n vertices has ~3.5 sqrt(n) on its rim, a strip
+  // more. A region held by fewer than sqrt(n) fixed vertices is a surface with a few data points on it
+  // (a degenerate input: 67k free vertices, 13 fixed); fairing it would invent its shape from those few,
+  // at a sparse LU's cost.
   std::vector<char> solve(regions.size(), 0);
   bool any = false;
   for (std::size_t i = 0; i < regions.size(); ++i) {
-    report.largest_region = std::max(report.largest_region, regions[i].size());
-    if (!anchored[i]) {
-      report.unanchored += regions[i].size();
-    } else if (max_region_vertices > 0 && regions[i].size() > max_region_vertices) {
+    const std::size_t n = regions[i].size();
+    report.largest_region = std::max(report.largest_region, n);
+    if (rim[i] == 0) {
+      report.unanchored += n;
+    } else if (static_cast<double>(rim[i]) < std::sqrt(static_cast<double>(n))) {
+      ++report.weakly_anchored_regions;
+      report.weakly_anchored_vertices += n;
+    } else if (max_region_vertices > 0 && n > max_region_vertices) {
       ++report.oversized_regions;
-      report.oversized_vertices += regions[i].size();
+      report.oversized_vertices += n;
     } else {
       solve[i] = 1;
       any = true;

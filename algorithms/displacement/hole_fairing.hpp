@@ -20,6 +20,8 @@ struct HoleFairingReport {
   std::size_t vertices = 0;         ///< free vertices moved
   std::size_t unanchored = 0;       ///< free vertices of regions without a fixed neighbour (left as they were)
   std::size_t failed_regions = 0;   ///< regions whose solve failed (left as they were)
+  std::size_t weakly_anchored_regions = 0;   ///< regions with fewer fixed neighbours than sqrt(their size)
+  std::size_t weakly_anchored_vertices = 0;  ///< their free vertices (left as they were)
   std::size_t oversized_regions = 0;  ///< regions above max_region_vertices (left as they were)
   std::size_t oversized_vertices = 0; ///< their free vertices
   std::size_t largest_region = 0;   ///< free vertices of the largest region, faired or not
@@ -27,10 +29,11 @@ struct HoleFairingReport {
 
 /// Fairs the vertices with free[v] != 0, region by region (connected through `neighbours`), with the
 /// other vertices fixed; continuity 0 (membrane: Laplacian), 1 (thin plate: bi-Laplacian) or 2. A
-/// region with no fixed neighbour has nothing to continue and is left as it is, and so is one whose
-/// solve fails or gives non-finite positions (counted), and so is one with more than
-/// `max_region_vertices` free vertices (0: no limit): the sparse LU's fill grows faster than the region
-/// (11k free vertices take 0.5 s, 20k 3 s, 67k 11 s). `mesh` must be a manifold (edges and vertices),
+/// region with no fixed neighbour has nothing to continue and is left as it is, and so is one held by
+/// fewer fixed neighbours than the square root of its size (not a hole bounded by data), one whose solve
+/// fails or gives non-finite positions, and one with more than `max_region_vertices` free vertices (0: no
+/// limit; the sparse LU grows faster than the region: 11k free vertices 0.5 s, 20k 3 s, a 67k disc 11 s
+/// in Release), each counted. `mesh` must be a manifold (edges and vertices),
 /// consistently oriented triangle mesh without faces that repeat a vertex (AlgorithmError otherwise,
 /// before anything moves); its normals, if any, are left to the caller.
 HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,

@@ -136,6 +136,33 @@ TEST_CASE("hole fairing: a region above the size limit keeps its positions, a sm
   CHECK(all.oversized_regions == 0);
 }
 
+TEST_CASE("hole fairing: a region held by a few fixed vertices only is not a hole and keeps its positions",
+          "[displacement][holes]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh m = base_mesh(f, Vec3(0.6, 0, 0), 0.05);
+  const auto nb = vertex_neighbours(m);
+  // Every vertex free but a handful: one region, far fewer fixed neighbours than sqrt(its size).
+  std::vector<char> free(m.vertices.size(), 1);
+  for (std::size_t v = 0; v < m.vertices.size(); v += m.vertices.size() / 4) free[v] = 0;
+  const std::size_t n = static_cast<std::size_t>(std::count(free.begin(), free.end(), 1));
+  TriangleMesh few = m;
+  for (Vec3& p : few.vertices) p *= 1.1;  // positions fairing would move
+  const TriangleMesh before = few;
+  const HoleFairingReport r = fair_holes(few, free, nb, 1);
+  CHECK(r.regions == 0);
+  CHECK(r.weakly_anchored_regions == 1);
+  CHECK(r.weakly_anchored_vertices == n);
+  CHECK(r.largest_region == n);
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) CHECK(few.vertices[v] == before.vertices[v]);
+  // A band of fixed vertices around the equator holds each half by its whole rim: both are faired.
+  std::vector<char> halves(m.vertices.size(), 0);
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) halves[v] = std::abs(m.vertices[v].z()) > 0.05;
+  TriangleMesh held = m;
+  const HoleFairingReport h = fair_holes(held, halves, nb, 1);
+  CHECK(h.regions == 2);
+  CHECK(h.weakly_anchored_regions == 0);
+}
+
 TEST_CASE("hole fairing: nothing to continue from, and bad input", "[displacement][holes][errors]") {
   const SphereSdf f(0.6);
   const TriangleMesh m = base_mesh(f, Vec3(0.6, 0, 0), 0.05);
