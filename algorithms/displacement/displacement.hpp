@@ -47,7 +47,7 @@ struct DisplacementOptions final : Options {
   int hole_fairing = 2;
   /// A hole region with more vertices than this keeps the harmonic fill (0: no limit): a bound on
   /// fairing's cost, whose sparse LU grows faster than the region (Release, 2 cores: 11k vertices 0.5 s,
-  /// 20k 3 s, a 67k disc 11 s). The largest holes met so far: 53k vertices (the 6000-point block, 2.4 s).
+  /// 20k 3 s, 67k 11 s). The largest holes met so far: 53k vertices (the 6000-point block, 2.4 s).
   int hole_fairing_max_vertices = 100000;
   /// Foot points whose normal makes a larger angle than this (degrees) with the vertex normal are
   /// ignored: on a thin part the other side's data lies within the support but belongs elsewhere.

@@ -64,7 +64,6 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
   // (a degenerate input: 67k free vertices, 13 fixed); fairing it would invent its shape from those few,
   // at a sparse LU's cost.
   std::vector<char> solve(regions.size(), 0);
-  bool any = false;
   for (std::size_t i = 0; i < regions.size(); ++i) {
     const std::size_t n = regions[i].size();
     report.largest_region = std::max(report.largest_region, n);
@@ -78,10 +77,9 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
       report.oversized_vertices += n;
     } else {
       solve[i] = 1;
-      any = true;
     }
   }
-  if (!any) return report;
+  if (std::find(solve.begin(), solve.end(), 1) == solve.end()) return report;
 
   SurfaceMesh sm;
   std::vector<SurfaceMesh::Vertex_index> handle(nv);
