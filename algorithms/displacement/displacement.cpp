@@ -63,6 +63,10 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "degree of the local polynomial fitted to the d_k over the tangent plane (0 = the paper's Gaussian mean)");
   v.field("discrepancy", discrepancy,
           "residual passes stop when the points' RMS offset falls to this x the noise sigma (0: all passes)");
+  v.field("spacing_sigma_factor", spacing_sigma_factor,
+          "the base filter at least this x the data's median spacing, and fitting regression_degree too "
+          "(data sparser than the mesh; 0: off, the paper's width)");
+  v.field("data_spacing", data_spacing, "the data's median spacing for spacing_sigma_factor (0: measured)");
   {
     PrefixedVisitor n(v, "noise_");
     noise.visit(n);
@@ -96,6 +100,8 @@ void DisplacementOptions::check() const {
   check_range("max_sigma_factor", max_sigma_factor, 0.05, 20.0);
   check_range("regression_degree", regression_degree, 0, 2);
   check_non_negative("discrepancy", discrepancy);
+  check_range("spacing_sigma_factor", spacing_sigma_factor, 0.0, 10.0);
+  check_non_negative("data_spacing", data_spacing);
   checked_with_prefix("noise_", [&] { noise.check(); });
   projection.check();
 }
@@ -128,19 +134,27 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
 
   const std::size_t nv = base.vertices.size();
   const double edge = locator.mean_edge_length();
-  const double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * edge;
+  double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * edge;
   const double cos_max = std::cos(options.max_normal_angle_deg * M_PI / 180.0);
 
   // The noise along the normal: it sets how many feet a vertex's filter must average.
   Stopwatch part;
   NoiseEstimate noise;
   // Fewer points than a fit needs: no estimate, the fixed filter (the summary says so).
-  const bool estimate = options.noise_sigma < 0 && points.size() >= static_cast<std::size_t>(options.noise.neighbours);
+  const bool can_estimate = points.size() >= static_cast<std::size_t>(options.noise.neighbours);
+  const bool estimate = options.noise_sigma < 0 && can_estimate;
   if (estimate) noise = estimate_noise(points, options.noise);
   const double noise_sigma = options.noise_sigma >= 0                              ? options.noise_sigma
                              : noise.sigma >= options.noise_floor * noise.spacing ? noise.sigma
                                                                                   : 0.0;
   const double noise_seconds = part.seconds();
+  // Data sparser than the mesh (ours, spacing_sigma_factor): a base filter as wide as the spacing, fitting
+  // a polynomial so that the wider filter does not flatten where d varies.
+  double spacing = options.data_spacing;
+  if (options.spacing_sigma_factor > 0 && spacing <= 0 && can_estimate)
+    spacing = estimate ? noise.spacing : estimate_noise(points, options.noise).spacing;
+  const bool base_fit = options.spacing_sigma_factor > 0 && spacing > 0;
+  if (base_fit) sigma = std::max(sigma, options.spacing_sigma_factor * spacing);
   // Filter widths tried where the data are noisy (ICI, DisplacementOptions::ici_threshold).
   std::vector<double> widths{sigma};
   if (noise_sigma > 0)
@@ -240,7 +254,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     // order of `reach` already is).
     if (!widen) std::sort(out.begin(), out.end());
     for (auto& tap : out) tap.second /= wsum;
-    *degree = j > 0 && options.regression_degree > 0
+    *degree = (j > 0 || base_fit) && options.regression_degree > 0
                   ? local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
                                              options.regression_degree)
                   : 0;
@@ -266,6 +280,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       continue;
     }
     known[v] = 1;
+    degree_used[v] = degree;
     // ICI: widen while the confidence intervals of the estimates so far intersect.
     const auto estimate = [&](const std::vector<std::pair<int, double>>& t, double* deviation) {
       double e = 0.0, l2 = 0.0;
@@ -448,6 +463,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"vertices", nv},
                       {"faces", base.faces.size()},
                       {"sigma", sigma},
+                      {"data_spacing", spacing},
+                      {"base_filter_fits", base_fit},
                       {"residual_passes", passes},
                       {"noise_sigma", noise_sigma},
                       {"noise_estimated", estimate},

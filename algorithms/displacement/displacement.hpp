@@ -98,7 +98,8 @@ struct DisplacementOptions final : Options {
   /// its value at the vertex (local polynomial regression; ours): 0 is the paper's Gaussian mean, 1
   /// (linear) is unbiased where d varies linearly (a tilted base surface), 2 (quadratic) where it bends
   /// too, so a filter widened against noise flattens less of the shape. Only the widened filters fit
-  /// (the base width keeps the paper's mean, and noise-free data the paper's filter). A vertex whose feet cannot
+  /// (the base width keeps the paper's mean, and noise-free data the paper's filter), and the base
+  /// filter where spacing_sigma_factor widens it. A vertex whose feet cannot
   /// support the fit (too few, one-sided at a hole's rim) falls back to the next lower degree.
   int regression_degree = 1;
   /// Residual passes stop once the RMS of the points' remaining offsets falls to this x sigma_n
@@ -106,6 +107,15 @@ struct DisplacementOptions final : Options {
   /// all passes. Off because with the widened filters the passes correct bias, not noise: stopped at
   /// 1.1 sigma_n the noisy test sphere ends twice as far from the truth (tests/displacement).
   double discrepancy = 0.0;
+  /// Data sparser than the mesh (ours; 0 = off, the paper's width): the base filter is at least this x
+  /// the data's median spacing wide and fits the regression_degree polynomial too. At the paper's width
+  /// (half an edge, support 1.5 edges) a vertex sees one to three feet where the spacing exceeds 1.5
+  /// edges (fandisk cut: spacing 0.038, edges 0.025), so d jumps from vertex to vertex wherever the base
+  /// surface is tilted against the data: a ripple at the data's spacing. A wider mean alone would
+  /// flatten the shape; the linear fit is unbiased where d varies linearly. configs/ablation_sparse_filter.yaml.
+  double spacing_sigma_factor = 0.0;
+  /// The data's median spacing for spacing_sigma_factor, frame units; 0: measured (noise_estimate.hpp).
+  double data_spacing = 0.0;
   NoiseEstimateOptions noise;
   /// Test every triangle for flips, not only those around vertices at risk (a diagnostic).
   bool check_all_faces = false;

@@ -193,6 +193,7 @@ class DtslPipeline final : public Reconstructor {
       // The data do not change between the refine-on-flip rounds: their noise is estimated once.
       DisplacementOptions round_displace = options_.displace;
       if (round_displace.noise_sigma < 0) round_displace.noise_sigma = dr.summary["noise_sigma"].get<double>();
+      if (round_displace.data_spacing <= 0) round_displace.data_spacing = dr.summary["data_spacing"].get<double>();
       nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), flip_seconds = nlohmann::json::array();
       for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
         std::vector<Vec3> focus;

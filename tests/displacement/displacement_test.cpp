@@ -254,10 +254,51 @@ TEST_CASE("noise-free data keep the paper's fixed filter", "[displacement][noise
   CHECK(a.mesh.vertices == b.mesh.vertices);
 }
 
+TEST_CASE("data sparser than the mesh: a filter as wide as the spacing that fits a plane leaves no ripple",
+          "[displacement][sparse]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  // ~1200 points on a bumpy sphere: spacing ~0.065, about two of the base mesh's edges.
+  const std::vector<Vec3> points = bumpy_sphere(1200, 0.63, 0.02, 0.0, 4);
+  const auto rms_to_truth = [](const TriangleMesh& m) {
+    double sum2 = 0.0;
+    for (const Vec3& v : m.vertices) sum2 += std::pow(v.norm() - bumpy_radius(v.normalized(), 0.63, 0.02), 2);
+    return std::sqrt(sum2 / static_cast<double>(m.vertices.size()));
+  };
+  DisplacementOptions paper;
+  paper.noise_sigma = 0.0;
+  DisplacementOptions sparse = paper;
+  sparse.spacing_sigma_factor = 1.0;
+  const DisplacementResult a = displace_mesh(f, base, points, paper), b = displace_mesh(f, base, points, sparse);
+  const double e_paper = rms_to_truth(a.mesh), e_sparse = rms_to_truth(b.mesh);
+  std::cout << "[sparse] bumpy sphere, 1200 points: RMS distance to the truth " << e_paper * 1e3 << "e-3 (paper's width "
+            << a.summary["sigma"] << ") -> " << e_sparse * 1e3 << "e-3 (width " << b.summary["sigma"] << ", spacing "
+            << b.summary["data_spacing"] << ")\n";
+  // The measured spacing sets the width, and the wider filter fits a plane at (nearly) every vertex.
+  const double spacing = b.summary["data_spacing"].get<double>();
+  CHECK(spacing == Approx(0.065).epsilon(0.25));
+  CHECK(b.summary["sigma"].get<double>() == Approx(spacing));
+  CHECK(b.summary["base_filter_fits"].get<bool>());
+  CHECK(b.summary["regression_degree_vertices"][1].get<std::size_t>() > 0.9 * base.vertices.size());
+  CHECK_FALSE(a.summary["base_filter_fits"].get<bool>());
+  CHECK(e_sparse < 0.6 * e_paper);
+  CHECK(b.flipped_faces.empty());
+  CHECK(mesh_stats(b.mesh).watertight);
+  // A spacing given is used as it is.
+  sparse.data_spacing = 0.05;
+  CHECK(displace_mesh(f, base, points, sparse).summary["sigma"].get<double>() == Approx(0.05));
+}
+
 TEST_CASE("the noise options name bad values", "[displacement][noise]") {
   DisplacementOptions o;
   o.noise_sigma = -0.5;
   CHECK_THROWS_WITH(o.check(), Catch::Contains("noise_sigma"));
+  o = DisplacementOptions{};
+  o.spacing_sigma_factor = -1.0;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("spacing_sigma_factor"));
+  o = DisplacementOptions{};
+  o.data_spacing = -0.1;
+  CHECK_THROWS_WITH(o.check(), Catch::Contains("data_spacing"));
   o = DisplacementOptions{};
   o.regression_degree = 3;
   CHECK_THROWS_WITH(o.check(), Catch::Contains("regression_degree"));
