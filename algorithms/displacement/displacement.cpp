@@ -64,8 +64,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("discrepancy", discrepancy,
           "residual passes stop when the points' RMS offset falls to this x the noise sigma (0: all passes)");
   v.field("spacing_sigma_factor", spacing_sigma_factor,
-          "the base filter at least this x the data's median spacing, and fitting regression_degree too "
-          "(data sparser than the mesh; 0: off, the paper's width)");
+          "noise-free data: the base filter at least this x the data's median spacing wide, and fitting "
+          "regression_degree (data sparser than the mesh ripple at the paper's width; 0: the paper's filter)");
   v.field("data_spacing", data_spacing, "the data's median spacing for spacing_sigma_factor (0: measured)");
   {
     PrefixedVisitor n(v, "noise_");
@@ -148,12 +148,12 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                              : noise.sigma >= options.noise_floor * noise.spacing ? noise.sigma
                                                                                   : 0.0;
   const double noise_seconds = part.seconds();
-  // Data sparser than the mesh (ours, spacing_sigma_factor): a base filter as wide as the spacing, fitting
-  // a polynomial so that the wider filter does not flatten where d varies.
+  // Noise-free data sparser than the mesh (ours, spacing_sigma_factor): a base filter as wide as the
+  // spacing, fitting a polynomial so that the wider filter does not flatten where d varies.
   double spacing = options.data_spacing;
-  if (options.spacing_sigma_factor > 0 && spacing <= 0 && can_estimate)
+  if (options.spacing_sigma_factor > 0 && noise_sigma == 0 && spacing <= 0 && can_estimate)
     spacing = estimate ? noise.spacing : estimate_noise(points, options.noise).spacing;
-  const bool base_fit = options.spacing_sigma_factor > 0 && spacing > 0;
+  const bool base_fit = options.spacing_sigma_factor > 0 && spacing > 0 && noise_sigma == 0;
   if (base_fit) sigma = std::max(sigma, options.spacing_sigma_factor * spacing);
   // Filter widths tried where the data are noisy (ICI, DisplacementOptions::ici_threshold).
   std::vector<double> widths{sigma};

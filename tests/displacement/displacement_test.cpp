@@ -38,6 +38,7 @@ TEST_CASE("displacement lowers e_avr on a bumpy, noisy sphere", "[displacement]"
   // windows over 40k points are slow under the sanitizers).
   DisplacementOptions paper;
   paper.noise_sigma = 0.0;
+  paper.spacing_sigma_factor = 0.0;
   const DisplacementResult r = displace_mesh(f, base, points, paper);
   const PointErrors before = point_errors(points, base), after = point_errors(points, r.mesh);
   std::cout << "[bumpy sphere] e_avr " << before.e_avr * 1e3 << "e-3 -> " << after.e_avr * 1e3 << "e-3, e_max "
@@ -72,6 +73,7 @@ TEST_CASE("displacement on an ellipsoid and a rounded box: lower error, no flips
     DisplacementOptions o;
     o.check_all_faces = true;
     o.noise_sigma = 0.0;  // the paper's filter (the noise-adaptive one is tested on the noisy sphere below)
+    o.spacing_sigma_factor = 0.0;
     const DisplacementResult r = displace_mesh(f, base, points, o);
     const PointErrors before = point_errors(points, base), after = point_errors(points, r.mesh);
     std::cout << "[" << (s ? "rounded box" : "ellipsoid") << "] e_avr " << before.e_avr * 1e3 << "e-3 -> "
@@ -205,6 +207,7 @@ TEST_CASE("on noisy data the filter widens where the shape allows: closer to the
   const std::vector<Vec3> points = bumpy_sphere(8000, 0.63, 0.02, 0.004, 2);
   DisplacementOptions paper;
   paper.noise_sigma = 0.0;  // the fixed filter: noise-free data assumed
+  paper.spacing_sigma_factor = 0.0;
   DisplacementOptions adaptive;  // the defaults: noise estimated from the data
   const DisplacementResult fixed = displace_mesh(f, base, points, paper);
   const DisplacementResult widened = displace_mesh(f, base, points, adaptive);
@@ -237,7 +240,7 @@ TEST_CASE("on noisy data the filter widens where the shape allows: closer to the
   CHECK(e_thinned < 0.6 * e_fixed);
 }
 
-TEST_CASE("noise-free data keep the paper's fixed filter", "[displacement][noise]") {
+TEST_CASE("data read as noise-free take the noise-free filter", "[displacement][noise]") {
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
   const std::vector<Vec3> points = bumpy_sphere(15000, 0.63, 0.02, 0.0, 3);
@@ -247,7 +250,7 @@ TEST_CASE("noise-free data keep the paper's fixed filter", "[displacement][noise
   const DisplacementResult a = displace_mesh(f, base, points, paper), b = displace_mesh(f, base, points, estimated);
   std::cout << "[noise] clean bumpy sphere: estimated noise " << b.summary["noise_sigma"] << ", widths "
             << b.summary["filter_widths"] << ", mean width " << b.summary["vertex_sigma_mean"] << "\n";
-  // Read as (next to) nothing, below the floor: the fixed filter, to the last bit.
+  // Read as (next to) nothing, below the floor: the noise-free filter (no ICI widths), to the last bit.
   CHECK(b.summary["noise_estimate"]["sigma"].get<double>() < 1e-4);
   CHECK(b.summary["noise_sigma"].get<double>() == 0.0);
   CHECK_FALSE(b.summary["filter_widened"].get<bool>());
@@ -267,8 +270,9 @@ TEST_CASE("data sparser than the mesh: a filter as wide as the spacing that fits
   };
   DisplacementOptions paper;
   paper.noise_sigma = 0.0;
-  DisplacementOptions sparse = paper;
-  sparse.spacing_sigma_factor = 1.0;
+  paper.spacing_sigma_factor = 0.0;  // the paper's filter
+  DisplacementOptions sparse;        // the default, on data read as noise-free
+  CHECK(sparse.spacing_sigma_factor == 1.0);
   const DisplacementResult a = displace_mesh(f, base, points, paper), b = displace_mesh(f, base, points, sparse);
   const double e_paper = rms_to_truth(a.mesh), e_sparse = rms_to_truth(b.mesh);
   std::cout << "[sparse] bumpy sphere, 1200 points: RMS distance to the truth " << e_paper * 1e3 << "e-3 (paper's width "
@@ -282,6 +286,7 @@ TEST_CASE("data sparser than the mesh: a filter as wide as the spacing that fits
   CHECK(b.summary["regression_degree_vertices"][1].get<std::size_t>() > 0.9 * base.vertices.size());
   CHECK_FALSE(a.summary["base_filter_fits"].get<bool>());
   CHECK(e_sparse < 0.6 * e_paper);
+  CHECK(b.summary["noise_sigma"].get<double>() == 0.0);
   CHECK(b.flipped_faces.empty());
   CHECK(mesh_stats(b.mesh).watertight);
   // A spacing given is used as it is.
