@@ -99,7 +99,8 @@ struct DisplacementOptions final : Options {
   /// (linear) is unbiased where d varies linearly (a tilted base surface), 2 (quadratic) where it bends
   /// too, so a filter widened against noise flattens less of the shape. On noisy data only the widened
   /// filters fit (the base width keeps the paper's mean); on noise-free data the base filter does,
-  /// unless spacing_sigma_factor is 0 (the paper's filter). A vertex whose feet cannot support the fit (too few, one-sided at a hole's rim) falls back to the next lower degree.
+  /// unless spacing_sigma_factor is 0 (the paper's filter). A vertex whose feet cannot support the fit
+  /// (too few, one-sided at a hole's rim) falls back to the next lower degree.
   int regression_degree = 1;
   /// Residual passes stop once the RMS of the points' remaining offsets falls to this x sigma_n
   /// (Morozov's discrepancy principle: a fit closer than the noise is fitting the noise). 0 (default):
