@@ -109,9 +109,9 @@ struct DisplacementOptions final : Options {
   double discrepancy = 0.0;
   /// Noise-free data (ours; 0 = the paper's filter): the base filter is at least this x the data's
   /// median spacing wide and fits the regression_degree polynomial. At the paper's width (half an edge,
-  /// support 1.5 edges) a vertex sees one to three feet where the spacing exceeds 1.5 edges (fandisk
-  /// cut: spacing 0.038, edges 0.027), so d jumps from vertex to vertex wherever the base surface is
-  /// tilted against the data: a ripple at the data's spacing. A wider mean alone flattens the shape
+  /// support 1.5 edges) a vertex sees a few feet where the spacing nears 1.5 edges (fandisk cut:
+  /// spacing 0.038, edges 0.025: two to three), so d jumps from vertex to vertex wherever the base
+  /// surface is tilted against the data: a ripple at the data's spacing. A wider mean alone flattens the shape
   /// (configs/ablation_displacement_filter.yaml); the linear fit is unbiased where d varies linearly.
   /// configs/ablation_sparse_filter.yaml: at 1 chamfer drops on all four noise-free models (fandisk cut
   /// 8.51 -> 7.73e-3, holed bunny 1.99 -> 1.86, block 2.26 -> 2.07, torus 0.60 -> 0.58). Noisy data
