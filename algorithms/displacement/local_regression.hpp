@@ -21,4 +21,13 @@ namespace dtsl {
 int local_regression_weights(std::vector<std::pair<int, double>>& taps, const std::vector<Vec3>& positions,
                              const Vec3& v, const Vec3& n, double scale, int degree);
 
+/// The weighted RMS misfit sqrt(sum_k w_k (y_k - p(x_k))^2 / sum_k w_k) of the weighted least-squares
+/// polynomial p of exactly `degree` (0-2) to the samples' values y_k = values[k], with the weights w_k of
+/// `taps` as given (before local_regression_weights); -1 when the samples cannot support that degree.
+/// Noise-free samples of a field of degree <= `degree` give 0; a kink in the field (an edge between the
+/// samples) a misfit proportional to its change of slope times the samples' spread.
+double local_regression_misfit(const std::vector<std::pair<int, double>>& taps, const std::vector<Vec3>& positions,
+                               const std::vector<double>& values, const Vec3& v, const Vec3& n, double scale,
+                               int degree);
+
 }  // namespace dtsl

@@ -88,3 +88,38 @@ TEST_CASE("local regression falls back where the samples cannot support the degr
     CHECK(sum == Approx(1.0));
   }
 }
+
+TEST_CASE("the misfit of a degree-p fit is zero on polynomials of degree p and grows with a kink", "[regression]") {
+  const Vec3 v(0.3, -0.2, 0.5), normal = Vec3(1, 2, 2).normalized();
+  const double r = 0.05;
+  const Samples s = scatter(v, normal, 80, r, 7);
+  const Vec3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+  const auto values_of = [&](auto y) {
+    std::vector<double> values;
+    for (const Vec3& p : s.positions) values.push_back(y((p - v).dot(t1), (p - v).dot(t2)));
+    return values;
+  };
+  const std::vector<double> linear = values_of([](double u, double w) { return 0.7 + 3 * u - 5 * w; });
+  const std::vector<double> quadratic =
+      values_of([](double u, double w) { return 0.7 + 3 * u - 5 * w + 40 * u * u - 25 * u * w + 60 * w * w; });
+  CHECK(local_regression_misfit(s.taps, s.positions, linear, v, normal, r / 3, 1) < 1e-12);
+  CHECK(local_regression_misfit(s.taps, s.positions, quadratic, v, normal, r / 3, 2) < 1e-12);
+  CHECK(local_regression_misfit(s.taps, s.positions, quadratic, v, normal, r / 3, 1) > 1e-5);
+  CHECK(local_regression_misfit(s.taps, s.positions, linear, v, normal, r / 3, 0) > 1e-3);
+  // A crease through the samples: slope change s at u = a. The misfit is proportional to s.
+  const auto crease = [&](double slope, double a) {
+    return values_of([=](double u, double) { return 0.7 + 3 * u + slope * std::max(0.0, u - a); });
+  };
+  const double m1 = local_regression_misfit(s.taps, s.positions, crease(0.5, 0.005), v, normal, r / 3, 1);
+  const double m2 = local_regression_misfit(s.taps, s.positions, crease(1.0, 0.005), v, normal, r / 3, 1);
+  CHECK(m1 > 0.02 * (r / 3));
+  CHECK(m2 == Approx(2 * m1).epsilon(1e-9));
+  // Farther from v, less of the crease lies under the weights.
+  CHECK(local_regression_misfit(s.taps, s.positions, crease(0.5, 0.03), v, normal, r / 3, 1) < m1);
+  SECTION("too few samples for the degree: -1") {
+    Samples few = scatter(v, normal, 8, r, 5);
+    std::vector<double> values(few.positions.size(), 1.0);
+    CHECK(local_regression_misfit(few.taps, few.positions, values, v, normal, r / 3, 2) == -1.0);
+    CHECK(local_regression_misfit(few.taps, few.positions, values, v, normal, r / 3, 1) == Approx(0.0).margin(1e-12));
+  }
+}
