@@ -66,6 +66,11 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("spacing_sigma_factor", spacing_sigma_factor,
           "noise-free data: the base filter at least this x the data's median spacing wide, and fitting "
           "regression_degree (data sparser than the mesh ripple at the paper's width; 0: the paper's filter)");
+  v.field("feature_misfit", feature_misfit,
+          "noise-free data, spacing filter: a vertex whose d_k misfit the wide fit by more than this x its width "
+          "(a crease under the filter) takes the paper's narrow mean (0: off)");
+  v.field("feature_max_offset", feature_max_offset,
+          "feature_misfit: only where the wide fit's |d| is below this x its width (farther, the base's feet scatter)");
   v.field("data_spacing", data_spacing, "the data's median spacing for spacing_sigma_factor (0: measured)");
   {
     PrefixedVisitor n(v, "noise_");
@@ -102,6 +107,8 @@ void DisplacementOptions::check() const {
   check_non_negative("discrepancy", discrepancy);
   check_range("spacing_sigma_factor", spacing_sigma_factor, 0.0, 10.0);
   check_non_negative("data_spacing", data_spacing);
+  check_range("feature_misfit", feature_misfit, 0.0, 10.0);
+  check_range("feature_max_offset", feature_max_offset, 0.0, 100.0);
   checked_with_prefix("noise_", [&] { noise.check(); });
   projection.check();
 }
@@ -135,6 +142,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   const std::size_t nv = base.vertices.size();
   const double edge = locator.mean_edge_length();
   double sigma = options.sigma > 0 ? options.sigma : options.sigma_factor * edge;
+  const double paper_sigma = sigma;  // the paper's width, for feature vertices (feature_misfit)
   const double cos_max = std::cos(options.max_normal_angle_deg * M_PI / 180.0);
 
   // The noise along the normal: it sets how many feet a vertex's filter must average.
@@ -233,11 +241,11 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       reach.swap(sorted);
     }
   };
-  // Width j's taps: the feet within its support, Gaussian weights normalised to sum 1, polynomial
-  // weights beyond the base width; false where they fail the hole test.
-  const auto taps_at = [&](long v, const std::vector<std::pair<int, double>>& reach, std::size_t j,
-                           std::vector<std::pair<int, double>>& out, int* degree) {
-    const double sv = widths[j], keep2 = support2[j], inv2s2 = 1.0 / (2.0 * sv * sv);
+  // Width j's taps: the feet within its support (sigma_j, or `narrow`'s), Gaussian weights normalised
+  // to sum 1; false where they fail the hole test.
+  const auto gaussian_taps = [&](const std::vector<std::pair<int, double>>& reach, double sv, double keep2,
+                                 std::vector<std::pair<int, double>>& out) {
+    const double inv2s2 = 1.0 / (2.0 * sv * sv);
     out.clear();
     double wsum = 0.0;
     for (const auto& [k, d2] : reach) {
@@ -254,6 +262,37 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     // order of `reach` already is).
     if (!widen) std::sort(out.begin(), out.end());
     for (auto& tap : out) tap.second /= wsum;
+    return true;
+  };
+  const bool detect_features = base_fit && options.feature_misfit > 0 && paper_sigma < sigma;
+  std::vector<char> feature(nv, 0);
+  // d(v) from the spacing filter's fit to v's taps (a copy: the taps keep their Gaussian weights).
+  const auto wide_fit_estimate = [&](long v, std::vector<std::pair<int, double>> taps) {
+    local_regression_weights(taps, pr.foot_points, base.vertices[v], normals[v], sigma, options.regression_degree);
+    double e = 0.0;
+    for (const auto& [k, w] : taps) e += w * pr.displacements[k];
+    return e;
+  };
+  // Width j's taps, with polynomial weights beyond the paper's mean (widened or spacing filter), or the
+  // paper's narrow mean at a crease (feature_misfit).
+  const auto taps_at = [&](long v, const std::vector<std::pair<int, double>>& reach, std::size_t j,
+                           std::vector<std::pair<int, double>>& out, int* degree) {
+    const double sv = widths[j];
+    if (!gaussian_taps(reach, sv, support2[j], out)) return false;
+    if (j == 0 && detect_features) {
+      // The misfit of a quadratic: it absorbs the curvature difference of base and data on smooth parts,
+      // not a crease's kink (a plane's misfit flagged the bunny's curved parts too).
+      const double misfit =
+          local_regression_misfit(out, pr.foot_points, pr.displacements, base.vertices[v], normals[v], sv, 2);
+      std::vector<std::pair<int, double>> narrow;
+      if (misfit > options.feature_misfit * sv && std::abs(wide_fit_estimate(v, out)) < options.feature_max_offset * sv &&
+          gaussian_taps(reach, paper_sigma, std::pow(options.support * paper_sigma, 2), narrow)) {
+        out.swap(narrow);
+        feature[v] = 1;
+        *degree = 0;
+        return true;
+      }
+    }
     *degree = (j > 0 || base_fit) && options.regression_degree > 0
                   ? local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
                                              options.regression_degree)
@@ -281,6 +320,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     }
     known[v] = 1;
     degree_used[v] = degree;
+    if (feature[v]) vertex_sigma[v] = paper_sigma;
     // ICI: widen while the confidence intervals of the estimates so far intersect.
     const auto estimate = [&](const std::vector<std::pair<int, double>>& t, double* deviation) {
       double e = 0.0, l2 = 0.0;
@@ -455,6 +495,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   for (std::size_t v = 0; v < nv; ++v)
     if (fv[v]) r.flipped_vertices.push_back(static_cast<int>(v));
   r.needs_refinement = !r.flipped_faces.empty();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (feature[v]) r.feature_vertices.push_back(static_cast<int>(v));
 
   double dmax = 0.0, dmean = 0.0;
   for (double x : d) dmax = std::max(dmax, std::abs(x)), dmean += std::abs(x);
@@ -506,6 +548,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     s["vertex_sigma_mean"] = filtered_vertices ? smean / filtered_vertices : sigma;
     s["vertex_sigma_max"] = smax;
     s["regression_degree_vertices"] = {degrees[0], degrees[1], degrees[2]};
+    s["feature_vertices"] = r.feature_vertices.size();
   }
   s["seconds"] = timer.seconds();  // the D-Map time of Table 1, without the error report below
   if (options.report_errors) {

@@ -117,6 +117,18 @@ struct DisplacementOptions final : Options {
   /// 8.51 -> 7.73e-3, holed bunny 1.99 -> 1.86, block 2.26 -> 2.07, torus 0.60 -> 0.58). Noisy data
   /// keep their ICI widths (which fit already).
   double spacing_sigma_factor = 1.0;
+  /// Noise-free data with the spacing filter (ours; 0 = off): a vertex whose wide filter's feet do not
+  /// fit a quadratic in the tangent plane (weighted RMS misfit of the d_k above this x the wide width:
+  /// a crease runs under the filter, and d has a kink no polynomial follows; a quadratic absorbs the
+  /// curvature difference of base and data on smooth parts) takes the paper's narrow mean instead
+  /// (sigma_factor x edge, degree 0) if its feet pass the hole test: the spacing filter's ripple-free
+  /// fit on the smooth parts, the paper's sharper one at the creases, which the wide fit rounds off.
+  /// configs/ablation_feature_filter.yaml.
+  double feature_misfit = 0.0;
+  /// feature_misfit only where the base surface is near the data: the wide fit's |d(v)| below this x
+  /// its width. Farther (fandisk cut: a thin wall Phase 1 blurs, |d| ~ 3 sigma) the feet on the base
+  /// scatter, and the narrow mean follows them (e_max 2x the wide fit's there).
+  double feature_max_offset = 0.5;
   /// The data's median spacing for spacing_sigma_factor, frame units; 0: measured (noise_estimate.hpp).
   double data_spacing = 0.0;
   NoiseEstimateOptions noise;
@@ -136,6 +148,7 @@ struct DisplacementResult {
   std::vector<double> vertex_displacement;  ///< d(v) per vertex; for a faired hole vertex the normal part of its move
   std::vector<int> hole_vertices;           ///< vertices without data near them: filled, then faired (hole_fairing)
   std::vector<int> at_risk_vertices;        ///< |d(v)| >= curvature_factor x smaller curvature radius
+  std::vector<int> feature_vertices;        ///< took the paper's narrow mean (feature_misfit)
   std::vector<int> flipped_faces;           ///< faces whose normal reversed (among those tested)
   std::vector<int> flipped_vertices;        ///< vertices of flipped faces: where to refine the level set
   bool needs_refinement = false;            ///< a flip happened: refine f (final refinement) and redo

@@ -311,3 +311,66 @@ TEST_CASE("the noise options name bad values", "[displacement][noise]") {
   o.noise.small_neighbours = 40;
   CHECK_THROWS_WITH(o.check(), Catch::Contains("noise_small_neighbours"));
 }
+
+TEST_CASE("a crease under the spacing filter: the vertices whose feet misfit a quadratic take the paper's mean",
+          "[displacement][sparse][feature]") {
+  // The data: a ball of radius 0.62 cut flat at x = 0.45 (a circular crease of 90 - 43 degrees); the
+  // base surface: the sphere of radius 0.6. d varies smoothly on both parts and has a kink at the crease.
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  const double R = 0.62, cut = 0.45;
+  std::vector<Vec3> points;
+  for (const Vec3& d : fibonacci_directions(6000)) {
+    Vec3 p = R * d;
+    if (p.x() > cut) p.x() = cut;
+    points.push_back(p);
+  }
+  const auto to_truth = [&](const Vec3& v) { return std::abs(std::max(v.norm() - R, v.x() - cut)); };
+  const double crease_radius = std::sqrt(R * R - cut * cut);
+  const auto from_crease = [&](const Vec3& v) { return std::hypot(v.x() - cut, std::hypot(v.y(), v.z()) - crease_radius); };
+  DisplacementOptions wide;
+  wide.noise_sigma = 0.0;
+  CHECK(wide.feature_misfit == 0.0);  // off by default
+  DisplacementOptions adaptive = wide;
+  adaptive.feature_misfit = 0.04;
+  const DisplacementResult a = displace_mesh(f, base, points, wide), b = displace_mesh(f, base, points, adaptive);
+  CHECK(a.summary["feature_vertices"].get<int>() == 0);
+  const double sigma = b.summary["sigma"].get<double>();
+  REQUIRE(b.summary["base_filter_fits"].get<bool>());
+  // Which vertices switched: near the crease, none on the smooth parts far from it.
+  int near = 0, switched = 0, far_switched = 0;
+  double near_a = 0.0, near_b = 0.0, far_a = 0.0, far_b = 0.0;
+  int far = 0;
+  std::vector<char> is_feature(base.vertices.size(), 0);
+  for (int v : b.feature_vertices) is_feature[v] = 1;
+  for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+    const double c = from_crease(base.vertices[v]);
+    const bool moved = is_feature[v];
+    if (c < 1.5 * sigma) {
+      ++near, near_a += std::pow(to_truth(a.mesh.vertices[v]), 2), near_b += std::pow(to_truth(b.mesh.vertices[v]), 2);
+      switched += moved;
+    } else if (c > 4 * sigma) {
+      ++far, far_a += std::pow(to_truth(a.mesh.vertices[v]), 2), far_b += std::pow(to_truth(b.mesh.vertices[v]), 2);
+      far_switched += moved;
+    }
+  }
+  const int features = b.summary["feature_vertices"].get<int>();
+  CHECK(static_cast<std::size_t>(features) == b.feature_vertices.size());
+  std::cout << "[feature] capped sphere: " << features << " of " << base.vertices.size() << " vertices take the paper's mean ("
+            << switched << " of " << near << " near the crease, " << far_switched << " of " << far
+            << " far from it); RMS to the truth near the crease " << std::sqrt(near_a / near) * 1e3 << "e-3 -> "
+            << std::sqrt(near_b / near) * 1e3 << "e-3, far " << std::sqrt(far_a / far) * 1e3 << "e-3 -> "
+            << std::sqrt(far_b / far) * 1e3 << "e-3\n";
+  CHECK(switched > near / 2);
+  CHECK(far_switched < far / 50);
+  CHECK(near_b < 0.85 * near_a);
+  CHECK(far_b < 1.05 * far_a + 1e-12);
+  CHECK(b.flipped_faces.empty());
+  CHECK(mesh_stats(b.mesh).watertight);
+  // Noisy data keep their widened fits: the switch does not apply.
+  DisplacementOptions noisy = adaptive;
+  noisy.noise_sigma = 0.002;
+  CHECK(displace_mesh(f, base, points, noisy).summary["feature_vertices"].get<int>() == 0);
+  adaptive.feature_misfit = -1.0;
+  CHECK_THROWS_WITH(adaptive.check(), Catch::Contains("feature_misfit"));
+}
