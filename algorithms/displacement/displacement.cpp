@@ -391,6 +391,15 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     }
   };
   std::vector<double> d(nv, 0.0);
+  if (getenv("DTSL_HEIGHT")) {
+#pragma omp parallel for schedule(static)
+    for (long v = 0; v < static_cast<long>(nv); ++v) {
+      double sum = 0.0;
+      for (const auto& [k, w] : filter[v])
+        sum += w * (pr.displacements[k] * pr.foot_normals[k].dot(normals[v]) + (pr.foot_points[k] - base.vertices[v]).dot(normals[v]));
+      d[v] = sum;
+    }
+  } else
   filtered(pr.displacements, d);
   // Residual passes: the offset each point still has from the displaced mesh, along its foot normal.
   std::vector<double> residual(points.size(), 0.0);
