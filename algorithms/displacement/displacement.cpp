@@ -66,6 +66,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("spacing_sigma_factor", spacing_sigma_factor,
           "noise-free data: the base filter at least this x the data's median spacing wide, and fitting "
           "regression_degree (data sparser than the mesh ripple at the paper's width; 0: the paper's filter)");
+  v.field("fit_heights", fit_heights,
+          "fit the data's heights above each vertex's tangent plane instead of the d_k where the fit is a "
+          "polynomial (the base's bumps between the feet do not carry into the mesh)");
   v.field("feature_misfit", feature_misfit,
           "noise-free data, spacing filter: a vertex whose d_k misfit the wide fit by more than this x its width "
           "(a crease under the filter) takes the paper's narrow mean (0: off)");
@@ -391,16 +394,24 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     }
   };
   std::vector<double> d(nv, 0.0);
-  if (getenv("DTSL_HEIGHT")) {
+  if (options.fit_heights) {
+    // The data's heights above v's tangent plane, h_k = (p_k - v) . n(v) with p_k = q_k + d_k n_k, in
+    // place of the d_k where the fit is a polynomial: the base surface's own bumps between the feet
+    // ((q_k - v) . n(v) != 0) then do not carry into the mesh. A mean (degree 0) of heights would sink
+    // by the curvature times the filter's spread: those vertices keep the d_k.
 #pragma omp parallel for schedule(static)
     for (long v = 0; v < static_cast<long>(nv); ++v) {
+      const bool heights = degree_used[v] >= 1;
       double sum = 0.0;
       for (const auto& [k, w] : filter[v])
-        sum += w * (pr.displacements[k] * pr.foot_normals[k].dot(normals[v]) + (pr.foot_points[k] - base.vertices[v]).dot(normals[v]));
+        sum += w * (heights ? pr.displacements[k] * pr.foot_normals[k].dot(normals[v]) +
+                                  (pr.foot_points[k] - base.vertices[v]).dot(normals[v])
+                            : pr.displacements[k]);
       d[v] = sum;
     }
-  } else
-  filtered(pr.displacements, d);
+  } else {
+    filtered(pr.displacements, d);
+  }
   // Residual passes: the offset each point still has from the displaced mesh, along its foot normal.
   std::vector<double> residual(points.size(), 0.0);
   const auto residuals = [&] {  // fills `residual`; returns their RMS (in point order: thread-independent)

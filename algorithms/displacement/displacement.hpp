@@ -117,6 +117,13 @@ struct DisplacementOptions final : Options {
   /// 8.51 -> 7.73e-3, holed bunny 1.99 -> 1.86, block 2.26 -> 2.07, torus 0.60 -> 0.58). Noisy data
   /// keep their ICI widths (which fit already).
   double spacing_sigma_factor = 1.0;
+  /// Fit the data points' heights above v's tangent plane, (p_k - v) . n(v), instead of their
+  /// displacements d_k from their feet, wherever the filter fits a polynomial (degree >= 1; ours, off by
+  /// default): a moving-least-squares estimate of where the data cross v's normal line, which does not
+  /// inherit the base surface's bumps between the feet (a lumpy MI at the T-mesh's cell size, under data
+  /// sparser than that). The residual passes then remove the fit's curvature bias. Vertices with a mean
+  /// (degree 0) keep the d_k. configs/ablation_displacement_fit.yaml.
+  bool fit_heights = false;
   /// Noise-free data with the spacing filter (ours; 0 = off): a vertex whose wide filter's feet do not
   /// fit a quadratic in the tangent plane (weighted RMS misfit of the d_k above this x the wide width:
   /// a crease runs under the filter, and d has a kink no polynomial follows; a quadratic absorbs the

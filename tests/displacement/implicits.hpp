@@ -93,4 +93,22 @@ class Dumbbell final : public Analytic {
   double n2_, k_;
 };
 
+/// |x| - r - a cos(k x) cos(k y) cos(k z): a sphere with bumps of wavelength 2 pi / k (a lumpy base
+/// surface, as a coarse level set is).
+class BumpySphere final : public Analytic {
+ public:
+  BumpySphere(double r, double a, double k) : r_(r), a_(a), k_(k) {}
+
+ protected:
+  double eval(const Vec3& x, Vec3& g) const override {
+    const double cx = std::cos(k_ * x.x()), cy = std::cos(k_ * x.y()), cz = std::cos(k_ * x.z());
+    const double sx = std::sin(k_ * x.x()), sy = std::sin(k_ * x.y()), sz = std::sin(k_ * x.z());
+    g = x / x.norm() + a_ * k_ * Vec3(sx * cy * cz, cx * sy * cz, cx * cy * sz);
+    return x.norm() - r_ - a_ * cx * cy * cz;
+  }
+
+ private:
+  double r_, a_, k_;
+};
+
 }  // namespace dtsl::test
