@@ -70,8 +70,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "fit the data's heights above each vertex's tangent plane instead of the d_k where the fit is a "
           "polynomial (the base's bumps between the feet do not carry into the mesh)");
   v.field("feature_misfit", feature_misfit,
-          "noise-free data, spacing filter: a vertex whose d_k misfit the wide fit by more than this x its width "
-          "(a crease under the filter) takes the paper's narrow mean (0: off)");
+          "noise-free data, spacing filter: a vertex whose d_k misfit a quadratic by more than this x the filter's "
+          "width (a crease under the filter) takes the paper's narrow mean (0: off)");
   v.field("feature_max_offset", feature_max_offset,
           "feature_misfit: only where the wide fit's |d| is below this x its width (farther, the base's feet scatter)");
   v.field("data_spacing", data_spacing, "the data's median spacing for spacing_sigma_factor (0: measured)");
@@ -269,37 +269,32 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   };
   const bool detect_features = base_fit && options.feature_misfit > 0 && paper_sigma < sigma;
   std::vector<char> feature(nv, 0);
-  // d(v) from the spacing filter's fit to v's taps (a copy: the taps keep their Gaussian weights).
-  const auto wide_fit_estimate = [&](long v, std::vector<std::pair<int, double>> taps) {
-    local_regression_weights(taps, pr.foot_points, base.vertices[v], normals[v], sigma, options.regression_degree);
-    double e = 0.0;
-    for (const auto& [k, w] : taps) e += w * pr.displacements[k];
-    return e;
-  };
   // Width j's taps, with polynomial weights beyond the paper's mean (widened or spacing filter), or the
   // paper's narrow mean at a crease (feature_misfit).
   const auto taps_at = [&](long v, const std::vector<std::pair<int, double>>& reach, std::size_t j,
                            std::vector<std::pair<int, double>>& out, int* degree) {
     const double sv = widths[j];
     if (!gaussian_taps(reach, sv, support2[j], out)) return false;
-    if (j == 0 && detect_features) {
-      // The misfit of a quadratic: it absorbs the curvature difference of base and data on smooth parts,
-      // not a crease's kink (a plane's misfit flagged the bunny's curved parts too).
-      const double misfit =
-          local_regression_misfit(out, pr.foot_points, pr.displacements, base.vertices[v], normals[v], sv, 2);
-      std::vector<std::pair<int, double>> narrow;
-      if (misfit > options.feature_misfit * sv && std::abs(wide_fit_estimate(v, out)) < options.feature_max_offset * sv &&
-          gaussian_taps(reach, paper_sigma, std::pow(options.support * paper_sigma, 2), narrow)) {
-        out.swap(narrow);
-        feature[v] = 1;
-        *degree = 0;
-        return true;
-      }
-    }
+    // The misfit of a quadratic, on the Gaussian weights: it absorbs the curvature difference of base and
+    // data on smooth parts, not a crease's kink (a plane's misfit flagged the bunny's curved parts too).
+    const bool crease = j == 0 && detect_features &&
+                        local_regression_misfit(out, pr.foot_points, pr.displacements, base.vertices[v], normals[v],
+                                                sv, 2) > options.feature_misfit * sv;
     *degree = (j > 0 || base_fit) && options.regression_degree > 0
                   ? local_regression_weights(out, pr.foot_points, base.vertices[v], normals[v], sv,
                                              options.regression_degree)
                   : 0;
+    if (crease) {
+      double wide = 0.0;  // d(v) from the spacing filter's fit
+      for (const auto& [k, w] : out) wide += w * pr.displacements[k];
+      std::vector<std::pair<int, double>> narrow;
+      if (std::abs(wide) < options.feature_max_offset * sv &&
+          gaussian_taps(reach, paper_sigma, std::pow(options.support * paper_sigma, 2), narrow)) {
+        out.swap(narrow);
+        feature[v] = 1;
+        *degree = 0;
+      }
+    }
     return true;
   };
 #pragma omp parallel for schedule(dynamic, 256)
