@@ -26,6 +26,7 @@ void FinalRefinementOptions::check() const {
   check_range("band_subdivision", band_subdivision, 1, 4);
   check_range("band_width", band_width, 0.5, 10.0);
   check_range("sign_guard", sign_guard, 0.0, 10.0);
+  check_one_of("transfer", transfer, {"quasi_interpolation", "least_squares"});
 }
 
 nlohmann::json to_json(const RefinementReport& r) {
@@ -89,7 +90,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   }
 
   // 2. Transfer f onto the refined T-mesh.
-  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree)) : level_set;
+  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree), transfer_from_string(options.transfer)) : level_set;
   const std::shared_ptr<const TSplineBasis> basis = f.shared_basis();
   report.control_points_after = basis->size();
   const std::vector<double> transferred = f.coefficients();

@@ -39,6 +39,7 @@ struct FinalRefinementOptions final : Options {
   int band_subdivision = 2;
   double band_width = 2.0;
   double sign_guard = 0.25;
+  std::string transfer = "quasi_interpolation";
 
   void visit(FieldVisitor& v) override {
     v.field("target_level", target_level,
@@ -65,6 +66,10 @@ struct FinalRefinementOptions final : Options {
     v.field("sign_guard", sign_guard,
             "no nucleation (sign_guard.hpp): a coefficient no data row touches keeps its sign, at least this "
             "fraction of its cell size from zero; 0 disables");
+    v.field("transfer", transfer,
+            "f onto the refined T-mesh before the fit (level_set_transfer.hpp): 'quasi_interpolation' (the old f "
+            "at the Greville points) or 'least_squares' (the best fit to the old f, ~5x closer; the fit then lands "
+            "about where it does from the quasi-interpolant: configs/ablation_transfer.yaml)");
   }
   void check() const override;
 };

@@ -7,6 +7,9 @@
 
 #include "algorithms/evolution/coarse_to_fine.hpp"
 #include "algorithms/evolution/evolution.hpp"
+#include "algorithms/evolution/level_set_transfer.hpp"
+
+#include <algorithm>
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
@@ -120,4 +123,53 @@ TEST_CASE("fine_velocity: unknown names and bad options are ConfigErrors naming 
   apply_assignment(o, "fine_velocity", "distance_balloon", "evolution");
   CHECK_THAT(message("fine_velocity_beta", "2"), Catch::Contains("fine_velocity_beta"));
   CHECK(message("fine_velocity_beta", "0.5") == "no error");
+}
+
+TEST_CASE("transfer: least squares is closer to the old f than quasi-interpolation, equal where knots did not change",
+          "[evolution][fine][transfer]") {
+  const std::vector<Vec3>& points = test::torus_data();
+  EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
+  o.final_refinement = false;
+  const LevelSetResult r = compute_level_set(points, o);
+  const TSpline& old = r.level_set;
+  // Split every leaf the data touch, one level.
+  Octree tree = old.tmesh();
+  std::vector<int> split;
+  for (const Vec3& p : points) split.push_back(tree.locate(p));
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  const Octree refined = refine_octree(tree, split, balance_of(tree));
+  const TSpline quasi = transfer_level_set(old, refined, Transfer::quasi_interpolation);
+  const TSpline fitted = transfer_level_set(old, refined, Transfer::least_squares);
+  // On the data (near the zero set) and on a grid over the whole domain.
+  std::vector<Vec3> probes(points.begin(), points.end());
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k) probes.push_back(Vec3(-1.1 + 0.11 * i, -1.1 + 0.11 * j, -1.1 + 0.11 * k));
+  double quasi_sq = 0.0, fitted_sq = 0.0, quasi_max = 0.0, fitted_max = 0.0;
+  for (const Vec3& x : probes) {
+    const double f0 = old.evaluate(x);
+    const double eq = std::abs(quasi.evaluate(x) - f0), ef = std::abs(fitted.evaluate(x) - f0);
+    quasi_sq += eq * eq;
+    fitted_sq += ef * ef;
+    quasi_max = std::max(quasi_max, eq);
+    fitted_max = std::max(fitted_max, ef);
+  }
+  INFO("RMS " << std::sqrt(quasi_sq / probes.size()) << " -> " << std::sqrt(fitted_sq / probes.size()) << ", max "
+              << quasi_max << " -> " << fitted_max);
+  CHECK(fitted_sq < 0.25 * quasi_sq);
+  CHECK(fitted_max < quasi_max);
+  // The unchanged coefficients are the old ones in both.
+  int kept = 0;
+  for (int i = 0; i < fitted.basis().size(); ++i) {
+    for (int j = 0; j < old.basis().size(); ++j) {
+      if (old.basis().vertex(j) != fitted.basis().vertex(i) || !(old.basis().knots(j) == fitted.basis().knots(i))) continue;
+      CHECK(fitted.coefficients()[i] == old.coefficients()[j]);
+      CHECK(quasi.coefficients()[i] == old.coefficients()[j]);
+      ++kept;
+      break;
+    }
+  }
+  CHECK(kept > 0);
+  CHECK_THROWS_WITH(transfer_from_string("nearest"), Catch::Contains("transfer") && Catch::Contains("nearest"));
 }

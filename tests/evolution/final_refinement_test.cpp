@@ -2,6 +2,7 @@
 // the T-mesh did not change, brings the level set closer to the data; callable again with focus points
 // (Phase 2, where displacement flips triangles).
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "algorithms/evolution/final_refinement.hpp"
 #include "framework/config/yaml_options.hpp"
@@ -133,4 +134,28 @@ TEST_CASE("final refinement: options are checked, no points is an error", "[evol
   CHECK_THROWS_AS(refine_level_set(evolved.level_set, test::torus_data(), o, *solver), ConfigError);
   FinalRefinementOptions p;
   CHECK_THROWS_WITH(apply_assignment(p, "smoothness", "thin_plate", "refine"), Catch::Contains("smoothness"));
+  FinalRefinementOptions q;
+  CHECK_THROWS_WITH(apply_assignment(q, "transfer", "nearest", "refine"),
+                    Catch::Contains("transfer") && Catch::Contains("nearest"));
+}
+
+TEST_CASE("final refinement: the least-squares transfer starts the fit closer to the evolved f", "[evolution][refine][transfer]") {
+  const LevelSetResult& evolved = evolved_torus();
+  const std::vector<Vec3>& points = test::torus_data();
+  FinalRefinementOptions o;
+  o.fit_iterations = 0;  // the transfer alone
+  auto solver = ldlt();
+  const RefinedLevelSet quasi = refine_level_set(evolved.level_set, points, o, *solver);
+  o.transfer = "least_squares";
+  const RefinedLevelSet fitted = refine_level_set(evolved.level_set, points, o, *solver);
+  REQUIRE(quasi.report.leaves_split == fitted.report.leaves_split);
+  // On the data, the transferred f differs from the evolved one by less (sum of squares).
+  double quasi_sq = 0.0, fitted_sq = 0.0;
+  for (const Vec3& p : points) {
+    const double f0 = evolved.level_set.evaluate(p);
+    quasi_sq += std::pow(quasi.level_set.evaluate(p) - f0, 2);
+    fitted_sq += std::pow(fitted.level_set.evaluate(p) - f0, 2);
+  }
+  INFO("sum of squares " << quasi_sq << " -> " << fitted_sq);
+  CHECK(fitted_sq < 0.5 * quasi_sq);
 }
