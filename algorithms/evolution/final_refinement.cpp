@@ -32,7 +32,7 @@ void FinalRefinementOptions::check() const {
 nlohmann::json to_json(const RefinementReport& r) {
   nlohmann::json solves = nlohmann::json::array();
   for (const SolveReport& s : r.solves) solves.push_back(to_json(s));
-  return {{"rounds", r.rounds},
+  nlohmann::json j = {{"rounds", r.rounds},
           {"leaves_split", r.leaves_split},
           {"control_points_before", r.control_points_before},
           {"control_points_after", r.control_points_after},
@@ -45,6 +45,8 @@ nlohmann::json to_json(const RefinementReport& r) {
           {"max_distance_after", r.after.max},
           {"solves", solves},
           {"seconds", r.seconds}};
+  if (r.rounds > 0) j["transfer"] = to_json(r.transfer);
+  return j;
 }
 
 RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec3>& points,
@@ -90,7 +92,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   }
 
   // 2. Transfer f onto the refined T-mesh.
-  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree), transfer_from_string(options.transfer)) : level_set;
+  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree), transfer_from_string(options.transfer), &report.transfer) : level_set;
   const std::shared_ptr<const TSplineBasis> basis = f.shared_basis();
   report.control_points_after = basis->size();
   const std::vector<double> transferred = f.coefficients();

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "algorithms/evolution/data_fit.hpp"
+#include "algorithms/evolution/level_set_transfer.hpp"
 #include "algorithms/evolution/solver.hpp"
 #include "algorithms/tspline/tspline.hpp"
 #include "framework/config/options.hpp"
@@ -68,8 +69,8 @@ struct FinalRefinementOptions final : Options {
             "fraction of its cell size from zero; 0 disables");
     v.field("transfer", transfer,
             "f onto the refined T-mesh before the fit (level_set_transfer.hpp): 'quasi_interpolation' (the old f "
-            "at the Greville points) or 'least_squares' (the best fit to the old f, ~5x closer; the fit then lands "
-            "about where it does from the quasi-interpolant: configs/ablation_transfer.yaml)");
+            "at the Greville points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus "
+            "test; the fit then lands about where it does from the quasi-interpolant: configs/ablation_transfer.yaml)");
   }
   void check() const override;
 };
@@ -83,6 +84,7 @@ struct RefinementReport {
   int guarded = 0;                 ///< coefficients the no-nucleation guard held
   DataFit before, after;           ///< data-to-level-set distance before refinement and after the fit
   std::vector<SolveReport> solves;
+  TransferReport transfer;         ///< how f reached the refined T-mesh (rounds > 0)
   double seconds = 0.0;
 };
 nlohmann::json to_json(const RefinementReport& r);

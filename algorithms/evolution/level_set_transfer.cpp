@@ -2,10 +2,13 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <map>
+#include <utility>
 #include <memory>
 
 #include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
 
 namespace dtsl {
 
@@ -29,7 +32,9 @@ namespace {
 /// over samples y of every leaf where a changed function is active (2^3 sub-cell centres per leaf;
 /// each function's support covers several leaves, so each is fitted to dozens of samples), with the
 /// unchanged coefficients fixed, so f stays exactly as it was where only they are active.
-void fit_changed(const TSpline& old, TSpline& f, const std::vector<char>& changed) {
+/// Least-squares CG on the sample matrix itself: A^T A is never formed (it would be several times
+/// larger than A on a 20k-point T-mesh).
+void fit_changed(const TSpline& old, TSpline& f, const std::vector<char>& changed, TransferReport& report) {
   const TSplineBasis& basis = f.basis();
   const Octree& tree = basis.octree();
   std::vector<int> unknown(basis.size(), -1);
@@ -39,14 +44,17 @@ void fit_changed(const TSpline& old, TSpline& f, const std::vector<char>& change
   if (unknowns == 0) return;
   constexpr int kSub = 2;
   struct LeafRows {
-    std::vector<Eigen::Triplet<double>> entries;  // row within the leaf, unknown, R_i(y)
-    std::vector<double> residual;                 // f_old(y) - f_new(y)
+    std::vector<int> begin;      // row r's entries are [begin[r], begin[r + 1])
+    std::vector<int> column;     // unknown
+    std::vector<double> value;   // R_i(y)
+    std::vector<double> residual;  // f_old(y) - f_new(y)
   };
   const int leaves = tree.leaf_count();
   std::vector<LeafRows> rows(leaves);
 #pragma omp parallel
   {
     ActiveBasis active;
+    std::vector<std::pair<int, double>> entries;
 #pragma omp for schedule(dynamic, 16)
     for (int l = 0; l < leaves; ++l) {
       bool touched = false;
@@ -58,39 +66,54 @@ void fit_changed(const TSpline& old, TSpline& f, const std::vector<char>& change
       for (int k = 0; k < kSub * kSub * kSub; ++k) {
         const Vec3 y = box.min + h * Vec3(k % kSub + 0.5, (k / kSub) % kSub + 0.5, k / (kSub * kSub) + 0.5);
         basis.active(y, active);
-        const int row = int(out.residual.size());
+        out.begin.push_back(int(out.column.size()));
+        entries.clear();
         for (int a = 0; a < active.size(); ++a)
-          if (unknown[active.index[a]] >= 0) out.entries.emplace_back(row, unknown[active.index[a]], active.value[a]);
+          if (unknown[active.index[a]] >= 0) entries.emplace_back(unknown[active.index[a]], active.value[a]);
+        std::sort(entries.begin(), entries.end());  // the row-major matrix takes ascending columns
+        for (const auto& [column, value] : entries) {
+          out.column.push_back(column);
+          out.value.push_back(value);
+        }
         out.residual.push_back(old.evaluate(y) - f.evaluate(y));
       }
     }
   }
-  // Concatenated in leaf order: the same system for every thread count.
-  std::vector<Eigen::Triplet<double>> entries;
-  std::vector<double> residual;
+  // Joined in leaf order (the same system for every thread count), each leaf's rows freed as they go.
+  std::size_t samples = 0, entries = 0;
   for (const LeafRows& r : rows) {
-    const int offset = int(residual.size());
-    for (const auto& t : r.entries) entries.emplace_back(t.row() + offset, t.col(), t.value());
-    residual.insert(residual.end(), r.residual.begin(), r.residual.end());
+    samples += r.residual.size();
+    entries += r.column.size();
   }
-  Eigen::SparseMatrix<double> a(Eigen::Index(residual.size()), unknowns);
-  a.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::Map<const Eigen::VectorXd> r(residual.data(), Eigen::Index(residual.size()));
-  Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(a.transpose()) * a;
-  // A whisper of Tikhonov regularisation keeps the normal equations definite where a changed function
-  // meets few samples (on the domain's faces); it moves the fit by far less than the tolerance.
-  double largest = 0.0;
-  for (int k = 0; k < unknowns; ++k) largest = std::max(largest, normal.coeff(k, k));
-  for (int k = 0; k < unknowns; ++k) normal.coeffRef(k, k) += 1e-9 * largest;
-  const Eigen::VectorXd rhs = a.transpose() * r;
-  // CG lowers the least-squares objective at every iteration, so even a capped solve improves on the
-  // quasi-interpolant it starts from (delta = 0).
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> a(static_cast<Eigen::Index>(samples), unknowns);
+  a.reserve(Eigen::Index(entries));
+  Eigen::VectorXd residual(static_cast<Eigen::Index>(samples));
+  Eigen::Index row = 0;
+  for (LeafRows& r : rows) {
+    for (std::size_t k = 0; k < r.residual.size(); ++k, ++row) {
+      a.startVec(row);
+      const int end = k + 1 < r.begin.size() ? r.begin[k + 1] : int(r.column.size());
+      for (int e = r.begin[k]; e < end; ++e) a.insertBack(row, r.column[e]) = r.value[e];
+      residual[row] = r.residual[k];
+    }
+    r = LeafRows();
+  }
+  a.finalize();
+  // CG on the normal equations lowers the least-squares objective at every iteration, so even a
+  // capped solve improves on the quasi-interpolant it starts from (delta = 0).
+  Eigen::LeastSquaresConjugateGradient<Eigen::SparseMatrix<double, Eigen::RowMajor>> cg;
   cg.setTolerance(1e-6);
   cg.setMaxIterations(2000);
-  cg.compute(normal);
-  const Eigen::VectorXd delta = cg.solve(rhs);
-  if (!delta.allFinite()) return;  // keep the quasi-interpolant
+  cg.compute(a);
+  const Eigen::VectorXd delta = cg.solve(residual);
+  report.samples = int(samples);
+  report.iterations = int(cg.iterations());
+  report.cg_error = cg.error();
+  report.converged = cg.info() == Eigen::Success;
+  if (!delta.allFinite()) {  // keep the quasi-interpolant, and say so
+    report.converged = false;
+    return;
+  }
   std::vector<double>& c = f.coefficients();
   for (int i = 0; i < basis.size(); ++i)
     if (unknown[i] >= 0) c[i] += delta[unknown[i]];
@@ -98,7 +121,19 @@ void fit_changed(const TSpline& old, TSpline& f, const std::vector<char>& change
 
 }  // namespace
 
-TSpline transfer_level_set(const TSpline& old, Octree refined, Transfer method) {
+nlohmann::json to_json(const TransferReport& r) {
+  nlohmann::json j = {{"method", r.method}, {"changed", r.changed}, {"seconds", r.seconds}};
+  if (r.method == "least_squares") {
+    j["samples"] = r.samples;
+    j["cg_iterations"] = r.iterations;
+    j["cg_error"] = r.cg_error;
+    j["converged"] = r.converged;
+  }
+  return j;
+}
+
+TSpline transfer_level_set(const TSpline& old, Octree refined, Transfer method, TransferReport* report) {
+  Stopwatch clock;
   auto basis = std::make_shared<TSplineBasis>(std::move(refined));
   const TSplineBasis& previous = old.basis();
   std::map<Int3, int> old_index;
@@ -116,7 +151,12 @@ TSpline transfer_level_set(const TSpline& old, Octree refined, Transfer method) 
     }
   }
   TSpline f(std::move(basis), std::move(c));
-  if (method == Transfer::least_squares) fit_changed(old, f, changed);
+  TransferReport record;
+  record.method = to_string(method);
+  for (char k : changed) record.changed += k;
+  if (method == Transfer::least_squares) fit_changed(old, f, changed, record);
+  record.seconds = clock.seconds();
+  if (report) *report = record;
   return f;
 }
 

@@ -149,6 +149,11 @@ TEST_CASE("final refinement: the least-squares transfer starts the fit closer to
   o.transfer = "least_squares";
   const RefinedLevelSet fitted = refine_level_set(evolved.level_set, points, o, *solver);
   REQUIRE(quasi.report.leaves_split == fitted.report.leaves_split);
+  CHECK(fitted.report.transfer.method == "least_squares");
+  CHECK(quasi.report.transfer.method == "quasi_interpolation");
+  CHECK(fitted.report.transfer.converged);
+  CHECK(fitted.report.transfer.samples > 0);
+  CHECK(to_json(fitted.report)["transfer"]["method"] == "least_squares");
   // On the data, the transferred f differs from the evolved one by less (sum of squares).
   double quasi_sq = 0.0, fitted_sq = 0.0;
   for (const Vec3& p : points) {
