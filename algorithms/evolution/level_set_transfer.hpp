@@ -10,7 +10,7 @@
 //    by a sizeable part of the data's distance to it (a 24k-point noisy diplodocus's mean data distance
 //    4.73e-3 -> 7.81e-3 by the transfer alone, 4.74e-3 with least squares), which the fit after it then
 //    has to undo. It does, about as well from either start, so the final meshes barely differ; in the
-//    coarse-to-fine round the least-squares start made the holed bunny much worse
+//    coarse-to-fine round the least-squares start made fandisk and the holed bunny worse
 //    (configs/ablation_transfer.yaml, README).
 // Either way f changes only where knots changed.
 #pragma once
