@@ -92,7 +92,9 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   }
 
   // 2. Transfer f onto the refined T-mesh.
-  TSpline f = report.rounds > 0 ? transfer_level_set(level_set, std::move(tree), transfer_from_string(options.transfer), &report.transfer) : level_set;
+  TSpline f = report.rounds > 0
+                  ? transfer_level_set(level_set, std::move(tree), transfer_from_string(options.transfer), &report.transfer)
+                  : level_set;
   const std::shared_ptr<const TSplineBasis> basis = f.shared_basis();
   report.control_points_after = basis->size();
   const std::vector<double> transferred = f.coefficients();

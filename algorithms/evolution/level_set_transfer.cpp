@@ -4,8 +4,8 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <map>
-#include <utility>
 #include <memory>
+#include <utility>
 
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"

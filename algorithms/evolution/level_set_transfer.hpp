@@ -5,13 +5,13 @@
 //    old cell size h; or
 //  - `least_squares` (ours): the discrete least-squares fit to the old f over 2^3 samples of every leaf
 //    where a changed function is active (so small leaves, near the surface, weigh more per volume),
-//    starting from the quasi-interpolant. A refined T-spline space
-//    need not contain the coarse one, so no transfer is exact; the quasi-interpolant moves the zero set
-//    by a sizeable part of the data's distance to it (a 24k-point noisy diplodocus's mean data distance
-//    4.73e-3 -> 7.81e-3 by the transfer alone, 4.74e-3 with least squares), which the fit after it then
-//    has to undo. It does, about as well from either start, so the final meshes barely differ; in the
-//    coarse-to-fine round the least-squares start made fandisk and the holed bunny worse
-//    (configs/ablation_transfer.yaml, README).
+//    starting from the quasi-interpolant.
+// A refined T-spline space need not contain the coarse one, so no transfer is exact; the
+// quasi-interpolant moves the zero set by a sizeable part of the data's distance to it (a 24k-point
+// noisy diplodocus's mean data distance 4.73e-3 -> 7.81e-3 by the transfer alone, 4.74e-3 with least
+// squares), which the fit after it then has to undo. It does, about as well from either start, so the
+// final meshes barely differ; in the coarse-to-fine round the least-squares start made fandisk and the
+// holed bunny worse (configs/ablation_transfer.yaml, README).
 // Either way f changes only where knots changed.
 #pragma once
 

@@ -5,15 +5,15 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "algorithms/evolution/coarse_to_fine.hpp"
-#include "algorithms/evolution/evolution.hpp"
-#include "algorithms/evolution/level_set_transfer.hpp"
-
 #include <algorithm>
 #include <map>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include "algorithms/evolution/coarse_to_fine.hpp"
+#include "algorithms/evolution/evolution.hpp"
+#include "algorithms/evolution/level_set_transfer.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
