@@ -29,6 +29,10 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("spike_factor", spike_factor,
           "|d(v) - mean d of its neighbours| above this x the mean edge length: a spike, refilled from the "
           "neighbours (0: off)");
+  v.field("rim_offset", rim_offset,
+          "a vertex next to a hole whose feet's weighted centroid lies farther than this x the filter width from it "
+          "in the tangent plane (feet to one side: an extrapolation) joins the hole (0: off)");
+  v.field("rim_rings", rim_rings, "rim_offset: the most rings added around a hole");
   v.field("fill_holes", fill_holes, "fill hole vertices harmonically from their neighbours (false: d = 0 there)");
   v.field("hole_fairing", hole_fairing,
           "then fair the hole vertices' positions with the others fixed: order of the Laplacian minimised (0 off, "
@@ -91,6 +95,8 @@ void DisplacementOptions::check() const {
   check_range("min_points", min_points, 1, 1000000);
   check_range("min_weight", min_weight, 0.0, 1.0);
   check_non_negative("spike_factor", spike_factor);
+  check_range("rim_offset", rim_offset, 0.0, 10.0);
+  check_range("rim_rings", rim_rings, 0, 100);
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
@@ -214,6 +220,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   std::vector<PrincipalCurvatures> curv(nv);
   std::vector<double> vertex_sigma(nv, sigma);
   std::vector<int> degree_used(nv, 0), width_index(nv, 0);
+  // The base filter's one-sidedness: |tangential part of its feet's weighted centroid - v| / width
+  // (rim_offset).
+  std::vector<double> centroid_shift(nv, 0.0);
   // Per vertex, the foot points of its filter and their weights, normalised to sum 1.
   std::vector<std::vector<std::pair<int, double>>> filter(nv);
   // v's feet within the widest support that pass the normal test: (point, squared distance).
@@ -275,6 +284,12 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                            std::vector<std::pair<int, double>>& out, int* degree) {
     const double sv = widths[j];
     if (!gaussian_taps(reach, sv, support2[j], out)) return false;
+    if (j == 0 && options.rim_offset > 0) {
+      Vec3 centroid = Vec3::Zero();
+      for (const auto& [k, w] : out) centroid += w * (pr.foot_points[k] - base.vertices[v]);
+      centroid -= centroid.dot(normals[v]) * normals[v];
+      centroid_shift[v] = centroid.norm() / sv;
+    }
     // The misfit of a quadratic, on the Gaussian weights: it absorbs the curvature difference of base and
     // data on smooth parts, not a crease's kink (a plane's misfit flagged the bunny's curved parts too).
     const bool crease = j == 0 && detect_features &&
@@ -452,6 +467,24 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     for (std::size_t v = 0; v < nv; ++v)
       if (spike[v]) known[v] = 0, d[v] = 0.0, ++spikes;
   }
+  // A hole's rim (rim_offset): the vertices beside it whose feet lie to one side join it, ring by ring.
+  std::size_t rim_vertices = 0;
+  if (options.rim_offset > 0) {
+    for (int ring = 0; ring < options.rim_rings; ++ring) {
+      std::vector<int> joining;
+      for (std::size_t v = 0; v < nv; ++v) {
+        if (!known[v] || centroid_shift[v] <= options.rim_offset) continue;
+        for (int u : locator.vertex_neighbours(static_cast<int>(v)))
+          if (!known[u]) {
+            joining.push_back(static_cast<int>(v));
+            break;
+          }
+      }
+      if (joining.empty()) break;
+      for (int v : joining) known[v] = 0, d[v] = 0.0;
+      rim_vertices += joining.size();
+    }
+  }
   for (std::size_t v = 0; v < nv; ++v)
     if (!known[v]) r.hole_vertices.push_back(static_cast<int>(v));
 
@@ -530,6 +563,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"filter_widths", widths},
                       {"projection", pr.summary()},
                       {"hole_vertices", r.hole_vertices.size()},
+                      {"hole_rim_vertices", rim_vertices},
                       {"spike_vertices", spikes},
                       {"hole_vertices_filled", options.fill_holes ? fill.unknown - fill.unreached : 0},
                       {"hole_vertices_unreached", fill.unreached},

@@ -39,6 +39,15 @@ struct DisplacementOptions final : Options {
   /// length is a spike (a foot point from another sheet, an extrapolated residual) and is refilled
   /// harmonically from its neighbours (ours; 0 disables). Real corners stay below ~1.
   double spike_factor = 3.0;
+  /// A hole's rim (ours; 0 off): a vertex next to a hole vertex whose base filter's feet lie to one
+  /// side, their Gaussian-weighted centroid more than this x the filter's width from it in the tangent
+  /// plane, is a hole vertex too, ring after ring up to rim_rings. Its d is an extrapolation of the
+  /// data across the rim (a one-sided fit); the hole's fill then starts where the data do. Feet all
+  /// round a vertex put their centroid near it however sparse they are, so sparse data are not taken
+  /// for a hole; a straight rim of even data puts it at sqrt(2/pi) ~ 0.8 x the width, inside the data.
+  double rim_offset = 0.0;
+  /// The most rings rim_offset adds around a hole.
+  int rim_rings = 3;
   /// Fill hole vertices harmonically from their neighbours; false leaves them on the base surface (d = 0).
   bool fill_holes = true;
   /// Then fair the hole vertices' positions (hole_fairing.hpp; ours), with the data-supported

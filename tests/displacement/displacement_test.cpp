@@ -407,3 +407,53 @@ TEST_CASE("fitting the data's heights: a lumpy base surface's bumps between spar
   offsets.spacing_sigma_factor = heights.spacing_sigma_factor = 0.0;
   CHECK(displace_mesh(f, base, points, offsets).mesh.vertices == displace_mesh(f, base, points, heights).mesh.vertices);
 }
+
+TEST_CASE("holes: rim vertices whose feet lie to one side join the hole, and the fill starts where the data do",
+          "[displacement][holes]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  // Data off the base by an offset that bends (so a one-sided linear fit at the rim extrapolates it
+  // wrongly), with a ball removed where it bends most.
+  const auto radius = [](const Vec3& d) { return 0.62 + 0.06 * d.x() * d.x(); };
+  const Vec3 centre = Vec3(1.0, 0.6, 0.3).normalized() * 0.65;
+  const double hole = 0.25;
+  std::vector<Vec3> points;
+  for (const Vec3& d : fibonacci_directions(12000)) {
+    const Vec3 p = radius(d) * d;
+    if ((p - centre).norm() > hole) points.push_back(p);
+  }
+  DisplacementOptions plain, rim;
+  rim.rim_offset = 0.8;
+  const DisplacementResult a = displace_mesh(f, base, points, plain);
+  const DisplacementResult b = displace_mesh(f, base, points, rim);
+  REQUIRE(a.hole_vertices.size() > 30);
+  // The weight test's holes stay holes; the rim adds vertices beside them, and only there.
+  std::vector<char> in_a(base.vertices.size(), 0), in_b(base.vertices.size(), 0);
+  for (int v : a.hole_vertices) in_a[v] = 1;
+  for (int v : b.hole_vertices) in_b[v] = 1;
+  std::size_t added = 0;
+  double farthest = 0.0;
+  for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+    if (in_a[v]) CHECK(in_b[v]);
+    if (in_b[v] && !in_a[v]) ++added, farthest = std::max(farthest, (base.vertices[v] - centre).norm());
+  }
+  CHECK(added > 0);
+  CHECK(b.summary["hole_rim_vertices"].get<std::size_t>() == added);
+  CHECK(a.summary["hole_rim_vertices"].get<std::size_t>() == 0);
+  CHECK(farthest < hole + 4 * 0.03);  // rim_rings (3) rings of ~0.03 edges around the hole, at most
+  // Over the union of both hole regions, the filled surface is nearer the data's surface with the rim.
+  double worst_a = 0.0, worst_b = 0.0, sum_a = 0.0, sum_b = 0.0;
+  for (int v : b.hole_vertices) {
+    const auto off = [&](const Vec3& x) { return std::abs(x.norm() - radius(x.normalized())); };
+    worst_a = std::max(worst_a, off(a.mesh.vertices[v])), sum_a += off(a.mesh.vertices[v]);
+    worst_b = std::max(worst_b, off(b.mesh.vertices[v])), sum_b += off(b.mesh.vertices[v]);
+  }
+  const double n = static_cast<double>(b.hole_vertices.size());
+  std::cout << "[hole rim] " << a.hole_vertices.size() << " hole vertices, " << added
+            << " rim vertices added; distance to the data's surface over the hole: mean " << sum_a / n * 1e3
+            << "e-3 -> " << sum_b / n * 1e3 << "e-3, max " << worst_a * 1e3 << "e-3 -> " << worst_b * 1e3 << "e-3\n";
+  CHECK(sum_b < 0.5 * sum_a);
+  CHECK(worst_b < 0.5 * worst_a);
+  CHECK(mesh_stats(b.mesh).watertight);
+  CHECK(b.flipped_faces.empty());
+}

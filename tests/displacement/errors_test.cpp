@@ -48,6 +48,12 @@ TEST_CASE("displacement options: check() names the field", "[displacement][error
   o.curvature_factor = -0.5;
   CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("curvature_factor"));
   o = DisplacementOptions();
+  o.rim_offset = -0.1;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_offset"));
+  o = DisplacementOptions();
+  o.rim_rings = -1;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_rings"));
+  o = DisplacementOptions();
   o.projection.newton_max_iterations = 0;
   CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("newton_max_iterations"));
   o = DisplacementOptions();
