@@ -47,7 +47,7 @@ struct DisplacementOptions final : Options {
   /// for a hole; a straight rim of even data puts it at sqrt(2/pi) ~ 0.8 x the width, inside the data.
   double rim_offset = 0.0;
   /// The most rings rim_offset adds around a hole.
-  int rim_rings = 3;
+  int rim_rings = 1;
   /// Fill hole vertices harmonically from their neighbours; false leaves them on the base surface (d = 0).
   bool fill_holes = true;
   /// Then fair the hole vertices' positions (hole_fairing.hpp; ours), with the data-supported
