@@ -44,7 +44,9 @@ struct DisplacementOptions final : Options {
   /// plane, is a hole vertex too, ring after ring up to rim_rings. Its d is an extrapolation of the
   /// data across the rim (a one-sided fit); the hole's fill then starts where the data do. Feet all
   /// round a vertex put their centroid near it however sparse they are, so sparse data are not taken
-  /// for a hole; a straight rim of even data puts it at sqrt(2/pi) ~ 0.8 x the width, inside the data.
+  /// for a hole. A vertex on a straight rim of even data has its centroid sqrt(2/pi) ~ 0.8 x the width
+  /// away, one inside the data less, one beyond the rim more: 0.8 takes the rim and what lies beyond.
+  /// configs/ablation_hole_rim.yaml.
   double rim_offset = 0.0;
   /// The most rings rim_offset adds around a hole.
   int rim_rings = 1;
