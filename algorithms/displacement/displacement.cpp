@@ -451,6 +451,26 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     residual_rms = -1.0;
   }
   if (noise_sigma > 0 && residual_rms < 0) residual_rms = residuals();  // the summary's figure
+  // A hole's rim (rim_offset): the vertices beside it whose feet lie to one side join it, ring by ring.
+  // Before the spike test, so that only the weight test's holes seed it and the spike test's neighbour
+  // means leave out the extrapolated d it discards.
+  std::size_t rim_vertices = 0;
+  if (options.rim_offset > 0) {
+    for (int ring = 0; ring < options.rim_rings; ++ring) {
+      std::vector<int> joining;
+      for (std::size_t v = 0; v < nv; ++v) {
+        if (!known[v] || centroid_shift[v] <= options.rim_offset) continue;
+        for (int u : locator.vertex_neighbours(static_cast<int>(v)))
+          if (!known[u]) {
+            joining.push_back(static_cast<int>(v));
+            break;
+          }
+      }
+      if (joining.empty()) break;
+      for (int v : joining) known[v] = 0, feature[v] = 0, d[v] = 0.0;
+      rim_vertices += joining.size();
+    }
+  }
   // Spikes: a vertex far off the mean of its neighbours is refilled from them with the holes.
   std::size_t spikes = 0;
   if (options.spike_factor > 0.0) {
@@ -465,25 +485,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       if (count > 0 && std::abs(d[v] - sum / count) > limit) spike[v] = 1;
     }
     for (std::size_t v = 0; v < nv; ++v)
-      if (spike[v]) known[v] = 0, d[v] = 0.0, ++spikes;
-  }
-  // A hole's rim (rim_offset): the vertices beside it whose feet lie to one side join it, ring by ring.
-  std::size_t rim_vertices = 0;
-  if (options.rim_offset > 0) {
-    for (int ring = 0; ring < options.rim_rings; ++ring) {
-      std::vector<int> joining;
-      for (std::size_t v = 0; v < nv; ++v) {
-        if (!known[v] || centroid_shift[v] <= options.rim_offset) continue;
-        for (int u : locator.vertex_neighbours(static_cast<int>(v)))
-          if (!known[u]) {
-            joining.push_back(static_cast<int>(v));
-            break;
-          }
-      }
-      if (joining.empty()) break;
-      for (int v : joining) known[v] = 0, d[v] = 0.0;
-      rim_vertices += joining.size();
-    }
+      if (spike[v]) known[v] = 0, feature[v] = 0, d[v] = 0.0, ++spikes;
   }
   for (std::size_t v = 0; v < nv; ++v)
     if (!known[v]) r.hole_vertices.push_back(static_cast<int>(v));

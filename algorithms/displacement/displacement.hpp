@@ -42,11 +42,12 @@ struct DisplacementOptions final : Options {
   /// A hole's rim (ours; 0 off): a vertex next to a hole vertex whose base filter's feet lie to one
   /// side, their Gaussian-weighted centroid more than this x the filter's width from it in the tangent
   /// plane, is a hole vertex too, ring after ring up to rim_rings. Its d is an extrapolation of the
-  /// data across the rim (a one-sided fit); the hole's fill then starts where the data do. Feet all
-  /// round a vertex put their centroid near it however sparse they are, so sparse data are not taken
-  /// for a hole. A vertex on a straight rim of even data has its centroid sqrt(2/pi) ~ 0.8 x the width
-  /// away, one inside the data less, one beyond the rim more: 0.8 takes the rim and what lies beyond.
-  /// configs/ablation_hole_rim.yaml.
+  /// data across the rim (a one-sided fit); the hole's fill then starts nearer where the data stop.
+  /// Enough feet all round a vertex put their centroid near it, so sparse data are not taken for a hole
+  /// (a vertex with one to three feet can have its centroid anywhere, but only one beside a hole is
+  /// tested). A vertex on a straight rim of even data has its centroid about sqrt(2/pi) ~ 0.8 x the
+  /// width away, one inside the data less: 0.8 takes the vertices beyond the data's edge (one on the
+  /// edge is borderline). configs/ablation_hole_rim.yaml.
   double rim_offset = 0.0;
   /// The most rings rim_offset adds around a hole.
   int rim_rings = 1;

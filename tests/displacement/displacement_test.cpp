@@ -424,6 +424,16 @@ TEST_CASE("holes: rim vertices whose feet lie to one side join the hole, and the
   }
   const DisplacementResult a = displace_mesh(f, base, points, DisplacementOptions{});
   REQUIRE(a.hole_vertices.size() > 30);
+  // Graph distance (edges) of every vertex from the weight test's holes.
+  std::vector<std::vector<int>> neighbours(base.vertices.size());
+  for (const Face& t : base.faces)
+    for (int c = 0; c < 3; ++c) neighbours[t[c]].push_back(t[(c + 1) % 3]), neighbours[t[(c + 1) % 3]].push_back(t[c]);
+  std::vector<int> steps(base.vertices.size(), -1), queue(a.hole_vertices.begin(), a.hole_vertices.end());
+  for (int v : queue) steps[v] = 0;
+  for (std::size_t q = 0; q < queue.size(); ++q)
+    for (int u : neighbours[queue[q]])
+      if (steps[u] < 0) steps[u] = steps[queue[q]] + 1, queue.push_back(u);
+  std::size_t added_before = 0;
   for (int rings : {1, 3}) {
     DisplacementOptions rim;
     rim.rim_offset = 0.8;
@@ -443,6 +453,10 @@ TEST_CASE("holes: rim vertices whose feet lie to one side join the hole, and the
     CHECK(b.summary["hole_rim_vertices"].get<std::size_t>() == added);
     CHECK(a.summary["hole_rim_vertices"].get<std::size_t>() == 0);
     CHECK(farthest < hole + (rim.rim_rings + 1) * 0.03);  // rim_rings rings of ~0.03 edges around the hole
+    for (std::size_t v = 0; v < base.vertices.size(); ++v)
+      if (in_b[v] && !in_a[v]) CHECK((steps[v] >= 1 && steps[v] <= rings));
+    CHECK(added > added_before);  // more rings, more of the rim
+    added_before = added;
     // Over the union of both hole regions, the filled surface is nearer the data's surface with the rim.
     double worst_a = 0.0, worst_b = 0.0, sum_a = 0.0, sum_b = 0.0;
     for (int v : b.hole_vertices) {
