@@ -425,9 +425,8 @@ TEST_CASE("holes: rim vertices whose feet lie to one side join the hole, and the
   const DisplacementResult a = displace_mesh(f, base, points, DisplacementOptions{});
   REQUIRE(a.hole_vertices.size() > 30);
   // Graph distance (edges) of every vertex from the weight test's holes.
-  std::vector<std::vector<int>> neighbours(base.vertices.size());
-  for (const Face& t : base.faces)
-    for (int c = 0; c < 3; ++c) neighbours[t[c]].push_back(t[(c + 1) % 3]), neighbours[t[(c + 1) % 3]].push_back(t[c]);
+  const MeshLocator locator(base);
+  const std::vector<std::vector<int>>& neighbours = locator.vertex_neighbours();
   std::vector<int> steps(base.vertices.size(), -1), queue(a.hole_vertices.begin(), a.hole_vertices.end());
   for (int v : queue) steps[v] = 0;
   for (std::size_t q = 0; q < queue.size(); ++q)
