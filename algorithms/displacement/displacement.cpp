@@ -49,6 +49,14 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("residual_passes", residual_passes,
           "passes that add the Gaussian mean of each point's remaining offset from the displaced mesh "
           "(removes the filter's bias where d varies; 0 = the paper's single filter)");
+  v.field("fine_residual_passes", fine_residual_passes,
+          "noise-free data, spacing filter: further residual passes with the paper's narrow Gaussian mean "
+          "(a crease's kink the wide fit leaves; 0 = off)");
+  v.field("fine_max_spread", fine_max_spread,
+          "fine_residual_passes skip a vertex whose narrow support's residuals spread (RMS) more than this x "
+          "the narrow width (feet of different sheets: a thin wall Phase 1 blurred; 0: no limit)");
+  v.field("fine_max_offset", fine_max_offset,
+          "fine_residual_passes skip a vertex whose wide fit's |d| exceeds this x its width (0: no limit)");
   v.field("noise_sigma", noise_sigma,
           "noise along the normal (frame units): -1 estimates it from the data, 0 = noise-free, > 0 = given");
   v.field("noise_floor", noise_floor,
@@ -100,6 +108,9 @@ void DisplacementOptions::check() const {
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
+  check_range("fine_residual_passes", fine_residual_passes, 0, 20);
+  check_range("fine_max_spread", fine_max_spread, 0.0, 100.0);
+  check_range("fine_max_offset", fine_max_offset, 0.0, 100.0);
   check_range("hole_fairing", hole_fairing, 0, 3);
   check_non_negative("hole_fairing_max_vertices", hole_fairing_max_vertices);
   std::ostringstream given;
@@ -450,6 +461,37 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     filtered(residual, d);
     residual_rms = -1.0;
   }
+  // Fine residual passes (fine_residual_passes): the paper's narrow mean of what the wide fit left.
+  int fine_passes = 0;
+  std::size_t fine_vertices = 0;
+  if (base_fit && options.fine_residual_passes > 0 && paper_sigma < sigma) {
+    std::vector<std::vector<std::pair<int, double>>> narrow(nv);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (long v = 0; v < static_cast<long>(nv); ++v) {
+      if (!known[v] || (options.fine_max_offset > 0 && std::abs(d[v]) > options.fine_max_offset * sigma)) continue;
+      std::vector<std::pair<int, double>> reach;
+      gather(v, reach, 0);
+      if (!gaussian_taps(reach, paper_sigma, std::pow(options.support * paper_sigma, 2), narrow[v])) narrow[v].clear();
+    }
+    // Where the residuals under a vertex's narrow support disagree (weighted RMS about their mean above
+    // fine_max_spread x the narrow width), the feet there come from different sheets of the data, not
+    // from one side of a crease: a thin wall Phase 1 blurred, whose feet on the base interleave. A
+    // narrow mean there follows whichever sheet is nearer; the vertex keeps the wide fit.
+    residuals();
+#pragma omp parallel for schedule(static)
+    for (long v = 0; v < static_cast<long>(options.fine_max_spread > 0 ? nv : 0); ++v) {
+      double mean = 0.0, mean2 = 0.0;
+      for (const auto& [k, w] : narrow[v]) mean += w * residual[k], mean2 += w * residual[k] * residual[k];
+      if (std::sqrt(std::max(0.0, mean2 - mean * mean)) > options.fine_max_spread * paper_sigma) narrow[v].clear();
+    }
+    for (const auto& taps : narrow) fine_vertices += taps.empty() ? 0 : 1;
+    filter.swap(narrow);  // `filtered` applies `filter`; the wide taps are back after the passes
+    for (; fine_passes < options.fine_residual_passes; ++fine_passes) {
+      if (fine_passes > 0) residuals();
+      filtered(residual, d);
+    }
+    filter.swap(narrow);
+  }
   if (noise_sigma > 0 && residual_rms < 0) residual_rms = residuals();  // the summary's figure
   // A hole's rim (rim_offset): the vertices beside it whose feet lie to one side join it, ring by ring.
   // Before the spike test, so that only the weight test's holes seed it and the spike test's neighbour
@@ -558,6 +600,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                       {"data_spacing", spacing},
                       {"base_filter_fits", base_fit},
                       {"residual_passes", passes},
+                      {"fine_residual_passes", fine_passes},
+                      {"fine_residual_vertices", fine_vertices},
                       {"noise_sigma", noise_sigma},
                       {"noise_estimated", estimate},
                       {"filter_widened", widen},

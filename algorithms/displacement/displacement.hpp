@@ -77,6 +77,21 @@ struct DisplacementOptions final : Options {
   /// along with its triangle) and adds the Gaussian mean of the r_k (Van Cittert's iteration). 0: the
   /// paper's single filter. Each pass also lets the noise through a little more.
   int residual_passes = 3;
+  /// Noise-free data with the spacing filter (ours; 0 = off): after the residual passes, this many more
+  /// with the paper's narrow Gaussian mean (sigma_factor x edge) of the remaining offsets. The wide fit
+  /// leaves a crease's kink in the residuals (a plane cannot follow it); on smooth parts it leaves
+  /// almost none, so the narrow mean adds almost nothing there and its ripple (the reason for the wide
+  /// fit) stays as small as the residuals. A vertex without feet in the narrow support keeps the wide fit.
+  int fine_residual_passes = 3;
+  /// fine_residual_passes skip a vertex whose narrow support's residuals (after the wide fit) spread
+  /// by more than this x the narrow width (weighted RMS about their mean): its feet come from different
+  /// sheets of the data (a thin wall Phase 1 blurred), where a narrow mean follows the nearer one.
+  /// 0: no limit (default: on fandisk cut 0.1 lowered e_avr of MS further but raised e_max, 9.6 -> 14e-3;
+  /// configs/ablation_fine_residual.yaml).
+  double fine_max_spread = 0.0;
+  /// ...and skip a vertex whose wide fit's |d(v)| exceeds this x the wide width (0: no limit): far from
+  /// the data (fandisk's thin wall, |d| ~ 3 widths) the base's feet scatter (as for feature_max_offset).
+  double fine_max_offset = 0.5;
   /// Noise along the normal, standard deviation in frame units (ours): -1 estimates it from the data
   /// (noise_estimate.hpp), 0 takes the data as noise-free (the fixed filter above, as before), > 0 is
   /// the user's figure (a scanner's depth noise). Noise widens the filter and stops the residual passes.
