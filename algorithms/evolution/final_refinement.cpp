@@ -38,6 +38,7 @@ nlohmann::json to_json(const RefinementReport& r) {
           {"control_points_after", r.control_points_after},
           {"target_level", r.target_level},
           {"fitted_points", r.fitted_points},
+          {"free_control_points", r.free_control_points},
           {"guarded", r.guarded},
           {"mean_distance_before", r.before.mean},
           {"max_distance_before", r.before.max},
@@ -99,6 +100,29 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   report.control_points_after = basis->size();
   const std::vector<double> transferred = f.coefficients();
 
+  // Local fit (options.local_fit, focus given): only the control points whose support overlaps a leaf
+  // this refinement created are unknowns, and only the rows that depend on them are built. Elsewhere the
+  // T-mesh, and so f (the transfer keeps unchanged knot vectors' coefficients), is what the caller had
+  // already fitted; refitting it all costs a global solve per D-Map flip round.
+  std::vector<char> free;
+  if (options.local_fit && !focus.empty() && report.rounds > 0) {
+    const Octree& old_tree = level_set.tmesh();
+    free.assign(std::size_t(basis->size()), 0);
+    for (int l = 0; l < basis->octree().leaf_count(); ++l) {
+      const Octree::Cell& cell = basis->octree().leaf(l);
+      if (old_tree.leaf(old_tree.leaf_at(cell.origin)).level >= cell.level) continue;  // not new
+      for (int c : basis->support(l)) free[std::size_t(c)] = 1;
+    }
+    for (char c : free) report.free_control_points += c;
+  }
+  // A point whose leaf's support list holds no free control point adds no row (rows of a local fit).
+  const auto touches_free = [&](const Vec3& x) {
+    if (free.empty()) return true;
+    for (int c : basis->support(basis->leaf_of(x)))
+      if (free[std::size_t(c)]) return true;
+    return false;
+  };
+
   // 3. Gauss-Newton steps of the direct fit.
   const Smoothness smoothness = smoothness_from_string(options.smoothness);
   std::vector<std::array<int, 2>> edges;
@@ -107,11 +131,13 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   const std::vector<double> floors = options.sign_guard > 0.0 ? sign_floors(*basis, options.sign_guard) : std::vector<double>();
   for (int it = 0; it < options.fit_iterations; ++it) {
     LeastSquaresBuilder rows(*basis);
+    if (!free.empty()) rows.restrict_to(free);
     // Data rows: f(p_k) + sum_i R_i(p_k) delta_i = 0, for the points near the level set.
     std::vector<Vec3> fitted;
     std::vector<double> target;
     fitted.reserve(points.size());
     for (const Vec3& p : points) {
+      if (!touches_free(p)) continue;
       Vec3 g;
       const double v = f.evaluate(p, &g);
       const double side = mesh.leaf_side(mesh.locate(p));
@@ -125,17 +151,20 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     // Distance-field rows: 2 grad f(y) . grad delta(y) = 1 - |grad f(y)|^2 on the band.
     const ZeroSetSamples samples = sample_zero_set(f, mesh, sampling);
     if (options.w_distance > 0.0 && !samples.band.empty()) {
-      std::vector<Vec3> direction(samples.band.size());
-      std::vector<double> rhs(samples.band.size());
+      std::vector<Vec3> band, direction;
+      std::vector<double> rhs;
       for (std::size_t m = 0; m < samples.band.size(); ++m) {
-        direction[m] = 2.0 * samples.band_gradient[m];
-        rhs[m] = 1.0 - samples.band_gradient[m].squaredNorm();
+        if (!touches_free(samples.band[m])) continue;
+        band.push_back(samples.band[m]);
+        direction.push_back(2.0 * samples.band_gradient[m]);
+        rhs.push_back(1.0 - samples.band_gradient[m].squaredNorm());
       }
-      rows.add_gradient_rows(samples.band, direction, rhs, options.w_distance);
+      rows.add_gradient_rows(band, direction, rhs, options.w_distance);
     }
     const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
     report.solves.push_back(solver.solve(system, delta));
+
     std::vector<double>& coefficients = f.coefficients();
     const std::vector<double> before = coefficients;
     for (int k = 0; k < system.unknowns; ++k) coefficients[system.control[k]] += delta[k];

@@ -14,7 +14,9 @@
 //     the same kind of least-squares system the evolution's solvers already solve. Data points
 //     farther than outlier_cells leaf sides from the level set are left out of the fit (outliers,
 //     or data the evolution did not reach: they would drag the surface across the cell).
-// Holes in the data keep their coarse cells and get no data rows: the fill stays smooth.
+// Holes in the data keep their coarse cells and get no data rows: the fill stays smooth. With focus
+// points and local_fit, step 3 fits only the control points over the leaves step 1 created (the rest of
+// f keeps its coefficients): cheaper per D-Map flip round, but the global refit's gain elsewhere is lost.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -41,6 +43,7 @@ struct FinalRefinementOptions final : Options {
   double band_width = 2.0;
   double sign_guard = 0.25;
   std::string transfer = "quasi_interpolation";
+  bool local_fit = false;
 
   void visit(FieldVisitor& v) override {
     v.field("target_level", target_level,
@@ -71,6 +74,11 @@ struct FinalRefinementOptions final : Options {
             "f onto the refined T-mesh before the fit (level_set_transfer.hpp): 'quasi_interpolation' (the old f "
             "at the Greville points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus "
             "test; the fit then lands about where it does from the quasi-interpolant: configs/ablation_transfer.yaml)");
+    v.field("local_fit", local_fit,
+            "with focus points (D-Map's refine-on-flip rounds), fit only the control points whose support overlaps a "
+            "leaf the refinement created, from the rows that depend on them (false, default: refit all of f; "
+            "local is 2-5x cheaper per round but the global refit's gain elsewhere is lost: "
+            "configs/ablation_flip_local_fit.yaml)");
   }
   void check() const override;
 };
@@ -81,6 +89,7 @@ struct RefinementReport {
   int control_points_before = 0, control_points_after = 0;
   int target_level = 0;
   int fitted_points = 0;           ///< data points in the fit (outliers left out)
+  int free_control_points = 0;     ///< local fit: the unknowns allowed (0: a global fit)
   int guarded = 0;                 ///< coefficients the no-nucleation guard held
   DataFit before, after;           ///< data-to-level-set distance before refinement and after the fit
   std::vector<SolveReport> solves;

@@ -168,7 +168,6 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
                                    const GradientCache* cache) {
   if (target.size() != x.size()) throw AlgorithmError("least squares: one target per row needed");
   if (x.empty()) return;
-  const double row_weight = weight / double(x.size());
   // Each thread fills its own block of consecutive points; blocks are appended in order, so the rows
   // come out in point order whatever the thread count.
   int threads = 1;
@@ -176,11 +175,12 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
   threads = std::max(1, std::min(omp_get_max_threads(), int(x.size() / 64) + 1));
 #endif
   struct Block {
-    std::vector<int> count, column;
+    std::vector<int> count, column, point;  // point: the row's index in x (rows without entries are dropped)
     std::vector<double> value;
   };
   std::vector<Block> blocks(threads);
   const long n = long(x.size());
+  const bool masked = !free_.empty();
 #pragma omp parallel num_threads(threads)
   {
     int t = 0;
@@ -191,34 +191,42 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     Block& b = blocks[t];
     ActiveBasis active;
     b.count.reserve(end - begin);
+    // Appends one entry unless its control point is fixed (restrict_to); returns whether it did.
+    const auto entry = [&](int column, double value) {
+      if (masked && !free_[std::size_t(column)]) return 0;
+      b.column.push_back(column);
+      b.value.push_back(value);
+      return 1;
+    };
     for (long k = begin; k < end; ++k) {
+      int count = 0;
       if (cache && (*sites)[std::size_t(k)] >= 0 && cache->has((*sites)[std::size_t(k)])) {  // a cached site
         const int site = (*sites)[std::size_t(k)], size = cache->size(site);
         const int* index = cache->index(site);
         const Vec3* gradient = cache->gradient(site);
-        b.count.push_back(size);
-        for (int e = 0; e < size; ++e) {
-          b.column.push_back(index[e]);
-          b.value.push_back((*direction)[k].dot(gradient[e]));
-        }
-        continue;
+        for (int e = 0; e < size; ++e) count += entry(index[e], (*direction)[k].dot(gradient[e]));
+      } else {
+        basis_.active(x[k], active, false);
+        for (int e = 0; e < active.size(); ++e)
+          count += entry(active.index[e], kind == Kind::value ? active.value[e] : (*direction)[k].dot(active.gradient[e]));
       }
-      basis_.active(x[k], active, false);
-      b.count.push_back(active.size());
-      for (int e = 0; e < active.size(); ++e) {
-        b.column.push_back(active.index[e]);
-        b.value.push_back(kind == Kind::value ? active.value[e] : (*direction)[k].dot(active.gradient[e]));
-      }
+      if (count == 0 && masked) continue;  // touches no free control point
+      b.count.push_back(count);
+      b.point.push_back(int(k));
     }
   }
+  int rows = 0;
+  for (const Block& b : blocks) rows += int(b.count.size());
+  if (rows == 0) return;
+  const double row_weight = weight / double(rows);
   for (const Block& b : blocks) {
     for (int c : b.count) row_begin_.push_back(row_begin_.back() + c);
     column_.insert(column_.end(), b.column.begin(), b.column.end());
     value_.insert(value_.end(), b.value.begin(), b.value.end());
+    for (int k : b.point) rhs_.push_back(target[std::size_t(k)]);
   }
-  rhs_.insert(rhs_.end(), target.begin(), target.end());
-  weight_.insert(weight_.end(), x.size(), row_weight);
-  (kind == Kind::value ? value_rows_ : gradient_rows_) += int(x.size());
+  weight_.insert(weight_.end(), std::size_t(rows), row_weight);
+  (kind == Kind::value ? value_rows_ : gradient_rows_) += rows;
 }
 
 LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smoothness_weight,

@@ -107,6 +107,11 @@ class LeastSquaresBuilder {
  public:
   explicit LeastSquaresBuilder(const TSplineBasis& basis) : basis_(basis) {}
 
+  /// Only the control points with free[i] != 0 are unknowns of the rows added after this call (one
+  /// entry per control point); the others keep a zero update, their columns dropped (a local fit). A
+  /// row left without entries is dropped, and its kind's weight is spread over the rows kept.
+  void restrict_to(std::vector<char> free) { free_ = std::move(free); }
+
   /// One row per point: sum_i R_i(x_k) u_i = target[k]. The kind's weight is spread over its rows:
   /// each gets weight / x.size(). OpenMP-parallel; rows keep the order of the points.
   void add_value_rows(const std::vector<Vec3>& x, const std::vector<double>& target, double weight);
@@ -137,6 +142,7 @@ class LeastSquaresBuilder {
   std::vector<int> column_;  // global control indices until finish()
   std::vector<double> value_, rhs_, weight_;
   int value_rows_ = 0, gradient_rows_ = 0;
+  std::vector<char> free_;  // empty: every control point is free
 };
 
 }  // namespace dtsl

@@ -98,6 +98,58 @@ TEST_CASE("final refinement: focus points refine only near them (Phase 2 flips)"
   CHECK(tree.leaf(tree.locate(opposite)).level < o.target_level);
 }
 
+TEST_CASE("final refinement: a local fit around focus points moves only the control points over new leaves",
+          "[evolution][refine]") {
+  const LevelSetResult& evolved = evolved_torus();
+  const std::vector<Vec3>& points = test::torus_data();
+  FinalRefinementOptions o;
+  o.target_level = evolved.level_set.tmesh().max_depth();
+  CHECK_FALSE(o.local_fit);  // off by default
+  o.local_fit = true;
+  auto solver = ldlt();
+  const Vec3 focus = *std::max_element(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  const RefinedLevelSet local = refine_level_set(evolved.level_set, points, o, *solver, {focus});
+  REQUIRE(local.report.leaves_split > 0);
+  INFO(to_json(local.report).dump());
+  CHECK(local.report.free_control_points > 0);
+  CHECK(local.report.free_control_points < local.report.control_points_after / 2);
+  // Outside the free set the coefficients are the transferred ones; inside, the fit moved some.
+  const std::vector<double>& c = local.level_set.coefficients();
+  int moved = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) moved += c[i] != local.transferred[i];
+  CHECK(moved > 0);
+  CHECK(moved <= local.report.free_control_points);
+  // So f is the transferred f far from the focus (the other side of the torus) ...
+  const Vec3 opposite(-focus.x(), focus.y(), focus.z());
+  const TSpline transferred(local.level_set.shared_basis(), local.transferred);
+  CHECK(local.level_set.evaluate(opposite) == Approx(transferred.evaluate(opposite)).margin(1e-12));
+  // ... and near it the data are closer than to the evolved f, about as close as after a global fit
+  // (sums of |f| / |grad f| over the data within 0.1 of the focus).
+  FinalRefinementOptions all_options = o;
+  all_options.local_fit = false;
+  const RefinedLevelSet all = refine_level_set(evolved.level_set, points, all_options, *solver, {focus});
+  CHECK(all.report.free_control_points == 0);
+  const auto near_distance = [&](const ImplicitFunction& f) {
+    double sum = 0.0;
+    for (const Vec3& p : points)
+      if ((p - focus).norm() < 0.1) {
+        Vec3 g;
+        const double v = f.evaluate(p, &g);
+        sum += std::abs(v) / g.norm();
+      }
+    return sum;
+  };
+  const double d_evolved = near_distance(evolved.level_set), d_local = near_distance(local.level_set),
+               d_global = near_distance(all.level_set);
+  INFO("near the focus: evolved " << d_evolved << ", local fit " << d_local << ", global fit " << d_global);
+  CHECK(d_local < 0.9 * d_evolved);
+  CHECK(d_local < 1.1 * d_global);
+  // Without focus points the option changes nothing: the final refinement fits everywhere.
+  FinalRefinementOptions global = o;
+  global.target_level = -1;
+  CHECK(refine_level_set(evolved.level_set, points, global, *solver).report.free_control_points == 0);
+}
+
 TEST_CASE("final refinement: nothing to split fits anyway, or with skip_fit returns f unchanged", "[evolution][refine]") {
   const LevelSetResult& evolved = evolved_torus();
   const std::vector<Vec3>& points = test::torus_data();

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <random>
 
 #include "algorithms/evolution/least_squares_rows.hpp"
@@ -74,6 +75,48 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   const std::vector<double> full = s.expand(cu, basis->size());
   for (int i = 0; i < basis->size(); ++i) CHECK(full[i] == (touched[i] ? c[i] : 0.0));
   CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(Smoothness::tikhonov, 1.0), AlgorithmError);
+}
+
+TEST_CASE("least squares: rows restricted to free control points drop the others' columns and rows touching none",
+          "[evolution][rows]") {
+  auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> x;
+  for (int k = 0; k < 60; ++k) x.push_back(Vec3(u(rng), u(rng), u(rng)));
+  // Free: the support list of the leaf holding x[0].
+  std::vector<char> free(basis->size(), 0);
+  for (int c : basis->support(basis->leaf_of(x[0]))) free[c] = 1;
+  std::vector<double> target(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) target[k] = double(k);
+  LeastSquaresBuilder rows(*basis);
+  rows.restrict_to(free);
+  rows.add_value_rows(x, target, 3.0);
+  const LeastSquaresSystem s = rows.finish(Smoothness::tikhonov, 0.0);
+  // The rows kept are the points with an active free control point, in point order, with their targets;
+  // each row's entries are exactly its free active functions.
+  ActiveBasis active;
+  int kept = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    basis->active(x[k], active);
+    std::vector<int> expected;
+    for (int e = 0; e < active.size(); ++e)
+      if (free[active.index[e]]) expected.push_back(active.index[e]);
+    if (expected.empty()) continue;
+    REQUIRE(kept < s.rows());
+    std::vector<int> got;
+    for (int e = s.row_begin[kept]; e < s.row_begin[kept + 1]; ++e) got.push_back(s.control[s.column[e]]);
+    std::sort(expected.begin(), expected.end());
+    CHECK(got == expected);
+    CHECK(s.rhs[kept] == target[k]);
+    ++kept;
+  }
+  CHECK(s.rows() == kept);
+  CHECK(kept > 0);
+  CHECK(kept < int(x.size()));
+  CHECK(s.value_rows == kept);
+  CHECK(s.weight[0] == Approx(3.0 / kept));  // the kind's weight over the rows kept
+  for (int k = 0; k < s.unknowns; ++k) CHECK(free[s.control[k]]);
 }
 
 TEST_CASE("least squares: gradient rows from the band's site cache equal rows computed afresh, step after step",
