@@ -100,7 +100,8 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   report.control_points_after = basis->size();
   const std::vector<double> transferred = f.coefficients();
 
-  // Local fit (options.local_fit, focus given): only the control points whose support overlaps a leaf
+  // Local fit (options.local_fit, focus given and something split; with nothing split the fit is the
+  // global one, or skipped with WhenNothingToSplit::skip_fit): only the control points whose support overlaps a leaf
   // this refinement created are unknowns, and only the rows that depend on them are built. Elsewhere the
   // T-mesh, and so f (the transfer keeps unchanged knot vectors' coefficients), is what the caller had
   // already fitted; refitting it all costs a global solve per D-Map flip round.
@@ -116,11 +117,18 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     for (char c : free) report.free_control_points += c;
   }
   // A point whose leaf's support list holds no free control point adds no row (rows of a local fit).
+  std::vector<char> leaf_touches_free;
+  if (!free.empty()) {
+    leaf_touches_free.assign(std::size_t(basis->octree().leaf_count()), 0);
+    for (int l = 0; l < basis->octree().leaf_count(); ++l)
+      for (int c : basis->support(l))
+        if (free[std::size_t(c)]) {
+          leaf_touches_free[std::size_t(l)] = 1;
+          break;
+        }
+  }
   const auto touches_free = [&](const Vec3& x) {
-    if (free.empty()) return true;
-    for (int c : basis->support(basis->leaf_of(x)))
-      if (free[std::size_t(c)]) return true;
-    return false;
+    return free.empty() || leaf_touches_free[std::size_t(basis->leaf_of(x))] != 0;
   };
 
   // 3. Gauss-Newton steps of the direct fit.
@@ -148,6 +156,8 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     report.fitted_points = int(fitted.size());
     if (fitted.empty()) break;  // the level set is nowhere near the data: nothing to fit
     rows.add_value_rows(fitted, target, 1.0);
+    // A local fit drops the rows in which no free function is active: count the data rows kept.
+    if (!free.empty()) report.fitted_points = rows.rows();
     // Distance-field rows: 2 grad f(y) . grad delta(y) = 1 - |grad f(y)|^2 on the band.
     const ZeroSetSamples samples = sample_zero_set(f, mesh, sampling);
     if (options.w_distance > 0.0 && !samples.band.empty()) {
@@ -161,6 +171,7 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
       }
       rows.add_gradient_rows(band, direction, rhs, options.w_distance);
     }
+    if (rows.rows() == 0) break;  // a local fit whose free functions no sample reaches
     const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
     report.solves.push_back(solver.solve(system, delta));

@@ -1,6 +1,7 @@
 #include "algorithms/evolution/least_squares_rows.hpp"
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -161,6 +162,13 @@ void LeastSquaresBuilder::add_gradient_rows(const std::vector<Vec3>& y, const st
   if (&cache.basis() != &basis_) throw AlgorithmError("least squares: the gradient cache is of another basis");
   cache.fill(y, sites);
   add_rows(Kind::gradient, y, &direction, target, weight, &sites, &cache);
+}
+
+void LeastSquaresBuilder::restrict_to(std::vector<char> free) {
+  if (!free.empty() && free.size() != std::size_t(basis_.size()))
+    throw AlgorithmError("least squares: a mask of " + std::to_string(free.size()) + " entries for " +
+                         std::to_string(basis_.size()) + " control points");
+  free_ = std::move(free);
 }
 
 void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,

@@ -108,9 +108,13 @@ class LeastSquaresBuilder {
   explicit LeastSquaresBuilder(const TSplineBasis& basis) : basis_(basis) {}
 
   /// Only the control points with free[i] != 0 are unknowns of the rows added after this call (one
-  /// entry per control point); the others keep a zero update, their columns dropped (a local fit). A
-  /// row left without entries is dropped, and its kind's weight is spread over the rows kept.
-  void restrict_to(std::vector<char> free) { free_ = std::move(free); }
+  /// entry per control point, or empty: all free again); the others keep a zero update, their columns
+  /// dropped (a local fit). That is right only where the unknowns are updates (a Gauss-Newton step, c'):
+  /// a fixed column's share of an absolute target would be lost. A row left without entries is dropped,
+  /// and its kind's weight is spread over the rows kept. AlgorithmError for a mask of another size.
+  void restrict_to(std::vector<char> free);
+  /// Rows added so far.
+  int rows() const { return int(rhs_.size()); }
 
   /// One row per point: sum_i R_i(x_k) u_i = target[k]. The kind's weight is spread over its rows:
   /// each gets weight / x.size(). OpenMP-parallel; rows keep the order of the points.

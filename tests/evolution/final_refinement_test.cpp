@@ -119,6 +119,17 @@ TEST_CASE("final refinement: a local fit around focus points moves only the cont
   for (std::size_t i = 0; i < c.size(); ++i) moved += c[i] != local.transferred[i];
   CHECK(moved > 0);
   CHECK(moved <= local.report.free_control_points);
+  // Every moved control point is free: its support overlaps a leaf the refinement created.
+  const TSplineBasis& refined = local.level_set.basis();
+  const Octree& before_tree = evolved.level_set.tmesh();
+  std::vector<char> free(c.size(), 0);
+  for (int l = 0; l < refined.octree().leaf_count(); ++l) {
+    const Octree::Cell& cell = refined.octree().leaf(l);
+    if (before_tree.leaf(before_tree.leaf_at(cell.origin)).level < cell.level)
+      for (int i : refined.support(l)) free[std::size_t(i)] = 1;
+  }
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c[i] != local.transferred[i]) CHECK(free[i]);
   // So f is the transferred f far from the focus (the other side of the torus) ...
   const Vec3 opposite(-focus.x(), focus.y(), focus.z());
   const TSpline transferred(local.level_set.shared_basis(), local.transferred);

@@ -117,6 +117,23 @@ TEST_CASE("least squares: rows restricted to free control points drop the others
   CHECK(s.value_rows == kept);
   CHECK(s.weight[0] == Approx(3.0 / kept));  // the kind's weight over the rows kept
   for (int k = 0; k < s.unknowns; ++k) CHECK(free[s.control[k]]);
+  // An all-free mask gives the system of no mask, entry for entry (value and gradient rows).
+  std::vector<Vec3> direction(x.size(), Vec3(0.2, -0.5, 0.8));
+  LeastSquaresBuilder plain(*basis), all(*basis);
+  all.restrict_to(std::vector<char>(basis->size(), 1));
+  for (LeastSquaresBuilder* b : {&plain, &all}) {
+    b->add_value_rows(x, target, 3.0);
+    b->add_gradient_rows(x, direction, target, 0.5);
+  }
+  const LeastSquaresSystem p = plain.finish(Smoothness::tikhonov, 1e-3), q = all.finish(Smoothness::tikhonov, 1e-3);
+  CHECK(p.control == q.control);
+  CHECK(p.row_begin == q.row_begin);
+  CHECK(p.column == q.column);
+  CHECK(p.value == q.value);
+  CHECK(p.rhs == q.rhs);
+  CHECK(p.weight == q.weight);
+  // A mask of another size is refused.
+  CHECK_THROWS_AS(LeastSquaresBuilder(*basis).restrict_to(std::vector<char>(3, 1)), AlgorithmError);
 }
 
 TEST_CASE("least squares: gradient rows from the band's site cache equal rows computed afresh, step after step",
