@@ -57,6 +57,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "the narrow width (feet of different sheets: a thin wall Phase 1 blurred; 0: no limit)");
   v.field("fine_max_offset", fine_max_offset,
           "fine_residual_passes skip a vertex whose wide fit's |d| exceeds this x its width (0: no limit)");
+  v.field("rim_min_feet", rim_min_feet,
+          "rim_offset tests only vertices whose base filter has at least this many feet (fewer: sparse data)");
   v.field("noise_sigma", noise_sigma,
           "noise along the normal (frame units): -1 estimates it from the data, 0 = noise-free, > 0 = given");
   v.field("noise_floor", noise_floor,
@@ -105,6 +107,7 @@ void DisplacementOptions::check() const {
   check_non_negative("spike_factor", spike_factor);
   check_range("rim_offset", rim_offset, 0.0, 10.0);
   check_range("rim_rings", rim_rings, 0, 100);
+  check_range("rim_min_feet", rim_min_feet, 1, 1000);
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
@@ -299,7 +302,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
       Vec3 centroid = Vec3::Zero();
       for (const auto& [k, w] : out) centroid += w * (pr.foot_points[k] - base.vertices[v]);
       centroid -= centroid.dot(normals[v]) * normals[v];
-      centroid_shift[v] = centroid.norm() / sv;
+      centroid_shift[v] = static_cast<int>(out.size()) >= options.rim_min_feet ? centroid.norm() / sv : 0.0;
     }
     // The misfit of a quadratic, on the Gaussian weights: it absorbs the curvature difference of base and
     // data on smooth parts, not a crease's kink (a plane's misfit flagged the bunny's curved parts too).
@@ -468,7 +471,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     std::vector<std::vector<std::pair<int, double>>> narrow(nv);
 #pragma omp parallel for schedule(dynamic, 256)
     for (long v = 0; v < static_cast<long>(nv); ++v) {
-      if (!known[v] || (options.fine_max_offset > 0 && std::abs(d[v]) > options.fine_max_offset * sigma)) continue;
+      // A feature vertex (feature_misfit) has the narrow mean already.
+      if (!known[v] || feature[v] || (options.fine_max_offset > 0 && std::abs(d[v]) > options.fine_max_offset * sigma))
+        continue;
       std::vector<std::pair<int, double>> reach;
       gather(v, reach, 0);
       if (!gaussian_taps(reach, paper_sigma, std::pow(options.support * paper_sigma, 2), narrow[v])) narrow[v].clear();
@@ -486,7 +491,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
     }
     for (const auto& taps : narrow) fine_vertices += taps.empty() ? 0 : 1;
     filter.swap(narrow);  // `filtered` applies `filter`; the wide taps are back after the passes
-    for (; fine_passes < options.fine_residual_passes; ++fine_passes) {
+    for (; fine_vertices > 0 && fine_passes < options.fine_residual_passes; ++fine_passes) {
       if (fine_passes > 0) residuals();
       filtered(residual, d);
     }
