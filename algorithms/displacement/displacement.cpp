@@ -57,6 +57,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "the narrow width (feet of different sheets: a thin wall Phase 1 blurred; 0: no limit)");
   v.field("fine_max_offset", fine_max_offset,
           "fine_residual_passes skip a vertex whose wide fit's |d| exceeds this x its width (0: no limit)");
+  v.field("rim_min_hole_vertices", rim_min_hole_vertices,
+          "rim_offset grows only holes of at least this many connected vertices (smaller: gaps in sparse data)");
   v.field("rim_min_feet", rim_min_feet,
           "rim_offset tests only vertices whose base filter has at least this many feet (fewer: sparse data)");
   v.field("noise_sigma", noise_sigma,
@@ -108,6 +110,7 @@ void DisplacementOptions::check() const {
   check_range("rim_offset", rim_offset, 0.0, 10.0);
   check_range("rim_rings", rim_rings, 0, 100);
   check_range("rim_min_feet", rim_min_feet, 1, 1000);
+  check_range("rim_min_hole_vertices", rim_min_hole_vertices, 1, 100000000);
   check_range("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   check_range("curvature_factor", curvature_factor, 0.0, 10.0);
   check_range("residual_passes", residual_passes, 0, 20);
@@ -503,18 +506,35 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // means leave out the extrapolated d it discards.
   std::size_t rim_vertices = 0;
   if (options.rim_offset > 0) {
+    // Only holes of at least rim_min_hole_vertices connected vertices seed the rim: a gap of a vertex or
+    // two between sparse data is no hole with a rim.
+    std::vector<char> seed(nv, 0);
+    {
+      std::vector<int> component;
+      std::vector<char> seen(nv, 0);
+      for (std::size_t start = 0; start < nv; ++start) {
+        if (known[start] || seen[start]) continue;
+        component.assign(1, static_cast<int>(start));
+        seen[start] = 1;
+        for (std::size_t q = 0; q < component.size(); ++q)
+          for (int u : locator.vertex_neighbours(component[q]))
+            if (!known[u] && !seen[u]) seen[u] = 1, component.push_back(u);
+        if (static_cast<int>(component.size()) >= options.rim_min_hole_vertices)
+          for (int v : component) seed[v] = 1;
+      }
+    }
     for (int ring = 0; ring < options.rim_rings; ++ring) {
       std::vector<int> joining;
       for (std::size_t v = 0; v < nv; ++v) {
         if (!known[v] || centroid_shift[v] <= options.rim_offset) continue;
         for (int u : locator.vertex_neighbours(static_cast<int>(v)))
-          if (!known[u]) {
+          if (!known[u] && seed[u]) {
             joining.push_back(static_cast<int>(v));
             break;
           }
       }
       if (joining.empty()) break;
-      for (int v : joining) known[v] = 0, feature[v] = 0, d[v] = 0.0;
+      for (int v : joining) known[v] = 0, feature[v] = 0, d[v] = 0.0, seed[v] = 1;
       rim_vertices += joining.size();
     }
   }

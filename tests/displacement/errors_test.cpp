@@ -54,6 +54,9 @@ TEST_CASE("displacement options: check() names the field", "[displacement][error
   o.rim_min_feet = 0;
   CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_min_feet"));
   o = DisplacementOptions();
+  o.rim_min_hole_vertices = 0;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_min_hole_vertices"));
+  o = DisplacementOptions();
   o.rim_rings = -1;
   CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_rings"));
   o = DisplacementOptions();
