@@ -11,6 +11,7 @@
 #include "algorithms/displacement/curvature.hpp"
 #include "algorithms/displacement/hole_fairing.hpp"
 #include "algorithms/displacement/hole_fill.hpp"
+#include "algorithms/displacement/hole_rim.hpp"
 #include "algorithms/displacement/local_regression.hpp"
 #include "algorithms/displacement/vertex_grid.hpp"
 #include "framework/config/prefixed_visitor.hpp"
@@ -506,37 +507,10 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   // means leave out the extrapolated d it discards.
   std::size_t rim_vertices = 0;
   if (options.rim_offset > 0) {
-    // Only holes of at least rim_min_hole_vertices connected vertices seed the rim: a gap of a vertex or
-    // two between sparse data is no hole with a rim.
-    std::vector<char> seed(nv, 0);
-    {
-      std::vector<int> component;
-      std::vector<char> seen(nv, 0);
-      for (std::size_t start = 0; start < nv; ++start) {
-        if (known[start] || seen[start]) continue;
-        component.assign(1, static_cast<int>(start));
-        seen[start] = 1;
-        for (std::size_t q = 0; q < component.size(); ++q)
-          for (int u : locator.vertex_neighbours(component[q]))
-            if (!known[u] && !seen[u]) seen[u] = 1, component.push_back(u);
-        if (static_cast<int>(component.size()) >= options.rim_min_hole_vertices)
-          for (int v : component) seed[v] = 1;
-      }
-    }
-    for (int ring = 0; ring < options.rim_rings; ++ring) {
-      std::vector<int> joining;
-      for (std::size_t v = 0; v < nv; ++v) {
-        if (!known[v] || centroid_shift[v] <= options.rim_offset) continue;
-        for (int u : locator.vertex_neighbours(static_cast<int>(v)))
-          if (!known[u] && seed[u]) {
-            joining.push_back(static_cast<int>(v));
-            break;
-          }
-      }
-      if (joining.empty()) break;
-      for (int v : joining) known[v] = 0, feature[v] = 0, d[v] = 0.0, seed[v] = 1;
-      rim_vertices += joining.size();
-    }
+    const std::vector<int> rim = grow_hole_rims(locator.vertex_neighbours(), centroid_shift, options.rim_offset,
+                                                options.rim_rings, options.rim_min_hole_vertices, known);
+    for (int v : rim) feature[v] = 0, d[v] = 0.0;
+    rim_vertices = rim.size();
   }
   // Spikes: a vertex far off the mean of its neighbours is refilled from them with the holes.
   std::size_t spikes = 0;

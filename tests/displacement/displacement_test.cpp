@@ -28,6 +28,24 @@ std::vector<Vec3> bumpy_sphere(int n, double R, double a, double noise, std::uin
   return out;
 }
 
+// The capped ball: a ball of radius 0.62 cut flat at x = 0.45 (a circular crease of 90 - 43 degrees),
+// 6000 points of it, with its distance to a point and a point's distance to the crease circle.
+struct CappedBall {
+  double R = 0.62, cut = 0.45;
+  std::vector<Vec3> points;
+  CappedBall() {
+    for (const Vec3& d : fibonacci_directions(6000)) {
+      Vec3 p = R * d;
+      if (p.x() > cut) p.x() = cut;
+      points.push_back(p);
+    }
+  }
+  double to_truth(const Vec3& v) const { return std::abs(std::max(v.norm() - R, v.x() - cut)); }
+  double from_crease(const Vec3& v) const {
+    return std::hypot(v.x() - cut, std::hypot(v.y(), v.z()) - std::sqrt(R * R - cut * cut));
+  }
+};
+
 }  // namespace
 
 TEST_CASE("displacement lowers e_avr on a bumpy, noisy sphere", "[displacement]") {
@@ -314,20 +332,13 @@ TEST_CASE("the noise options name bad values", "[displacement][noise]") {
 
 TEST_CASE("a crease under the spacing filter: the vertices whose feet misfit a quadratic take the paper's mean",
           "[displacement][sparse][feature]") {
-  // The data: a ball of radius 0.62 cut flat at x = 0.45 (a circular crease of 90 - 43 degrees); the
-  // base surface: the sphere of radius 0.6. d varies smoothly on both parts and has a kink at the crease.
+  // The data: the capped ball; the base surface: the sphere of radius 0.6. d varies smoothly on both parts and has a kink at the crease.
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
-  const double R = 0.62, cut = 0.45;
-  std::vector<Vec3> points;
-  for (const Vec3& d : fibonacci_directions(6000)) {
-    Vec3 p = R * d;
-    if (p.x() > cut) p.x() = cut;
-    points.push_back(p);
-  }
-  const auto to_truth = [&](const Vec3& v) { return std::abs(std::max(v.norm() - R, v.x() - cut)); };
-  const double crease_radius = std::sqrt(R * R - cut * cut);
-  const auto from_crease = [&](const Vec3& v) { return std::hypot(v.x() - cut, std::hypot(v.y(), v.z()) - crease_radius); };
+  const CappedBall ball;
+  const std::vector<Vec3>& points = ball.points;
+  const auto to_truth = [&](const Vec3& v) { return ball.to_truth(v); };
+  const auto from_crease = [&](const Vec3& v) { return ball.from_crease(v); };
   DisplacementOptions wide;
   wide.noise_sigma = 0.0;
   wide.fine_residual_passes = 0;  // the switch against the wide fit alone (the fine passes: the next test)
@@ -384,16 +395,10 @@ TEST_CASE("fine residual passes: the paper's narrow mean of what the wide fit le
   // filter's width): Phase 1 ends near the data.
   const SphereSdf f(0.615);
   const TriangleMesh base = base_mesh(f, Vec3(0.615, 0, 0), 0.03);
-  const double R = 0.62, cut = 0.45;
-  std::vector<Vec3> points;
-  for (const Vec3& d : fibonacci_directions(6000)) {
-    Vec3 p = R * d;
-    if (p.x() > cut) p.x() = cut;
-    points.push_back(p);
-  }
-  const auto to_truth = [&](const Vec3& v) { return std::abs(std::max(v.norm() - R, v.x() - cut)); };
-  const double crease_radius = std::sqrt(R * R - cut * cut);
-  const auto from_crease = [&](const Vec3& v) { return std::hypot(v.x() - cut, std::hypot(v.y(), v.z()) - crease_radius); };
+  const CappedBall ball;
+  const std::vector<Vec3>& points = ball.points;
+  const auto to_truth = [&](const Vec3& v) { return ball.to_truth(v); };
+  const auto from_crease = [&](const Vec3& v) { return ball.from_crease(v); };
   DisplacementOptions wide;
   wide.noise_sigma = 0.0;
   wide.fine_residual_passes = 0;
