@@ -48,10 +48,10 @@ struct DisplacementOptions final : Options {
   /// tested). A vertex on a straight rim of even data has its centroid about sqrt(2/pi) ~ 0.8 x the
   /// width away, one inside the data less: 0.8 takes the vertices beyond the data's edge (one on the
   /// edge is borderline). configs/ablation_hole_rim.yaml. Default 0.8 since session 24: with the fine
-  /// residual passes it lowers chamfer on four of its five datasets without the e_max it cost before
-  /// (bunny 1.85 -> 1.46e-3, e_max 11.4 -> 9.2; fandisk 7.44 -> 6.26, e_max 9.6 -> 10.0). It applies to
-  /// noisy data too (the fine passes do not): diplodocus 0.96 -> 0.86, e_max 7.2 -> 8.0; armadillo 1.34,
-  /// e_max 15.8 -> 11.9.
+  /// residual passes and rim_min_hole_vertices 20 it lowers chamfer without most of the e_max it cost
+  /// before (bunny 1.85 -> 1.59e-3, e_max 11.4 -> 8.8; fandisk 7.44 -> 6.26, e_max 9.6 -> 10.0). It
+  /// applies to noisy data too (the fine passes do not): diplodocus 0.96 -> 0.87, e_max 7.2 -> 7.9;
+  /// armadillo 1.34, e_max 15.8 -> 10.8 (configs/method.yaml, configs/paper_table1.yaml).
   double rim_offset = 0.8;
   /// rim_offset tests only vertices whose base filter has at least this many feet: with fewer the
   /// centroid can lie anywhere (sparse data, not a rim).

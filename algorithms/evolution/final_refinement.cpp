@@ -175,7 +175,6 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
     const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
     report.solves.push_back(solver.solve(system, delta));
-
     std::vector<double>& coefficients = f.coefficients();
     const std::vector<double> before = coefficients;
     for (int k = 0; k < system.unknowns; ++k) coefficients[system.control[k]] += delta[k];
