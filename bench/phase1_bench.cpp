@@ -18,6 +18,7 @@
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/zero_set.hpp"
+#include "framework/core/allocator.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/timer.hpp"
 #include "framework/datasets/dataset.hpp"
@@ -75,6 +76,7 @@ LeastSquaresSystem first_step_system(const std::vector<Vec3>& points, const Evol
 }  // namespace
 
 int main(int argc, char** argv) {
+  dtsl::configure_allocator();  // as `dtsl` does (framework/core/allocator.hpp)
   int repeat = 3;
   register_velocities();
   register_level_set_solvers();

@@ -10,6 +10,7 @@
 
 #include "algorithms/evolution/evolution.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
+#include "framework/core/allocator.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/timer.hpp"
 #include "framework/datasets/dataset.hpp"
@@ -18,6 +19,7 @@
 using namespace dtsl;
 
 int main(int argc, char** argv) {
+  dtsl::configure_allocator();  // as `dtsl` does (framework/core/allocator.hpp)
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   register_all_plugins();
   const char* specs[] = {

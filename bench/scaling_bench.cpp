@@ -26,6 +26,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "experiments/plugins.hpp"
+#include "framework/core/allocator.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -98,6 +99,7 @@ json run_in_child(const std::string& pipeline, const Dataset& data, int timeout)
       }
       out["vertices"] = result.mesh.vertices.size();
       out["peak_memory_mib"] = peak_memory_mib();
+      out["allocator"] = allocator_configuration();
       try {  // a mesh the metrics refuse is still a timed run: say why, keep the time
         const MeshStats stats = mesh_stats(result.mesh);
         out["components"] = stats.components;
@@ -150,6 +152,7 @@ std::string thousandths(const json& j, const char* key) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dtsl::configure_allocator();  // as `dtsl` does (framework/core/allocator.hpp)
   std::vector<long> sizes = {10000, 100000, 1000000};
   int repeat = 3, timeout = 0;
   bool paper_size = true;

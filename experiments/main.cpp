@@ -4,6 +4,7 @@
 
 #include "experiments/cli.hpp"
 #include "experiments/plugins.hpp"
+#include "framework/core/allocator.hpp"
 #include "framework/core/error.hpp"
 
 namespace {
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     std::cerr << kUsage;
     return 2;
   }
+  dtsl::configure_allocator();
   const std::string command = argv[1];
   dtsl::cli::Args args(std::vector<std::string>(argv + 2, argv + argc));
   try {
