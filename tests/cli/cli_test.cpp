@@ -227,7 +227,8 @@ datasets:
   - {name: torus, shape: torus, sampler: {type: area, count: 3000, density_ratio: 6}}
 pipelines:
   - {name: dtsl, type: dtsl}
-table: {columns: [dataset, e_avr@MI, e_avr@MD, e_avr@MS, time@TL, time@MT, time@D-Map, time@B-Evl, genus, chamfer@MI]}
+table: {columns: [dataset, e_avr@MI, e_avr@MD, e_avr@MS, time@TL, time@MT, time@D-Map, time@B-Evl, genus,
+                  stage@B-Evl.iterations, stage@B-Evl.stop_reason, stage@TL.best_iteration, chamfer@MI]}
 )");
   const Outcome o = dtsl("run " + config + " --results " + (tmp.path / "results").string() + " --run-id r");
   INFO(o.output);

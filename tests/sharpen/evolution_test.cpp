@@ -77,6 +77,34 @@ TEST_CASE("eigen_ldlt and ceres drive the same evolution on the block", "[sharpe
   CHECK(once.summary["e_avr_final"].get<double>() < 0.9 * once.summary["e_avr_initial"].get<double>());
 }
 
+TEST_CASE("the stopping rule: slow steps are taken until the patience-th in a row, which is not", "[sharpen][stop]") {
+  const TriangleMesh truth = sharpen_test::block_truth();
+  const auto points = sharpen_test::block_points(truth, 15000, 11);
+  const TriangleMesh start = sharpen_test::rounded_block_mesh(0.08, 0.04);
+  BilateralEvolutionOptions o;
+  o.delta = 0.04;
+  o.degenerate.max_passes = 0;
+  o.min_relative_decrease = 0.9;  // no step gains 90 %: every step is slow
+  for (int patience : {1, 2, 3}) {
+    o.patience = patience;
+    const auto r = bilateral_evolution(start, points, o);
+    const auto& h = r.summary["e_avr_per_iteration"];
+    INFO("patience " << patience);
+    REQUIRE(h.size() == std::size_t(patience) + 1);  // the initial e_avr, then one per step tried
+    CHECK(r.summary["iterations"].get<int>() == patience - 1);
+    CHECK(r.summary["stop_reason"] == "e_avr stopped falling");
+    for (int k = 1; k <= patience; ++k) CHECK(h[k].get<double>() < h[k - 1].get<double>());  // each still falls
+    // The result is the last step taken, not the one that stopped the loop.
+    CHECK(r.summary["e_avr_evolved"].get<double>() == h[patience - 1].get<double>());
+    CHECK(r.summary["e_avr_final"].get<double>() == Approx(h[patience - 1].get<double>()).epsilon(1e-12));
+  }
+  // With a threshold no step misses, the cap ends it.
+  o.min_relative_decrease = 0.0;
+  o.patience = 1;
+  o.max_iterations = 2;
+  CHECK(bilateral_evolution(start, points, o).summary["iterations"].get<int>() == 2);
+}
+
 TEST_CASE("on a smooth sphere almost nothing is sharp and the mesh barely moves", "[sharpen][sphere]") {
   MarchingCubesOptions mc;
   mc.step = 0.05;
@@ -136,6 +164,7 @@ TEST_CASE("options: check() names the broken field, visit() lists every field wi
   CHECK_THROWS_WITH(broken([](auto& o) { o.bilateral_weight = -1.0; }).check(), Catch::StartsWith("bilateral_weight"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.solver = "cholmod"; }).check(), Catch::StartsWith("solver"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.max_iterations = -1; }).check(), Catch::StartsWith("max_iterations"));
+  CHECK_THROWS_WITH(broken([](auto& o) { o.patience = 0; }).check(), Catch::StartsWith("patience"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.sharp.error_ratio = -1.0; }).check(),
                     Catch::StartsWith("sharp_error_ratio"));
   CHECK_THROWS_WITH(broken([](auto& o) { o.sharp.dihedral_angle_deg = 200.0; }).check(),
@@ -162,5 +191,6 @@ TEST_CASE("options: check() names the broken field, visit() lists every field wi
   CHECK(lister.all_documented);
   CHECK(std::find(lister.names.begin(), lister.names.end(), "sharp_normal_variation_deg") != lister.names.end());
   CHECK(std::find(lister.names.begin(), lister.names.end(), "degenerate_max_passes") != lister.names.end());
-  CHECK(lister.names.size() == 10 + 5 + 3);
+  CHECK(std::find(lister.names.begin(), lister.names.end(), "patience") != lister.names.end());
+  CHECK(lister.names.size() == 11 + 5 + 3);
 }
