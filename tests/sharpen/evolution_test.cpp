@@ -32,11 +32,13 @@ class Sphere final : public ImplicitFunction {
   }
 };
 
+/// 15k points on the block (the start mesh of both tests below: the block rounded by 0.08).
+std::vector<Vec3> block_data() { return sharpen_test::block_points(sharpen_test::block_truth(), 15000, 11); }
+
 }  // namespace
 
 TEST_CASE("eigen_ldlt and ceres drive the same evolution on the block", "[sharpen][solver]") {
-  const TriangleMesh truth = sharpen_test::block_truth();
-  const auto points = sharpen_test::block_points(truth, 15000, 11);
+  const auto points = block_data();
   const TriangleMesh start = sharpen_test::rounded_block_mesh(0.08, 0.04);
   BilateralEvolutionOptions o;
   o.delta = 0.04;
@@ -78,8 +80,7 @@ TEST_CASE("eigen_ldlt and ceres drive the same evolution on the block", "[sharpe
 }
 
 TEST_CASE("the stopping rule: slow steps are taken until the patience-th in a row, which is not", "[sharpen][stop]") {
-  const TriangleMesh truth = sharpen_test::block_truth();
-  const auto points = sharpen_test::block_points(truth, 15000, 11);
+  const auto points = block_data();
   const TriangleMesh start = sharpen_test::rounded_block_mesh(0.08, 0.04);
   BilateralEvolutionOptions o;
   o.delta = 0.04;
