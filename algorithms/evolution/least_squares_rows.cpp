@@ -198,8 +198,8 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     const long begin = n * t / threads, end = n * (t + 1) / threads;
     Block& b = blocks[t];
     ActiveBasis active;
-    // Reserved up front: growing these by doubling, then copying them into the system, was ~8 % of a
-    // single-threaded reconstruction (memmove and page faults in the profile; issue 7). A cubic
+    // Reserved up front: growing these by doubling was part of the ~8 % memmove of a single-threaded
+    // reconstruction's profile (issue 7; 1 % after, with the allocator's top pad). A cubic
     // T-spline has 64 active functions at a generic point, more near T-junctions (53-70 per row, mean,
     // in fandisk's evolution steps).
     b.count.reserve(end - begin);
@@ -319,7 +319,7 @@ LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smo
     ++s.smoothness_rows;
   };
   if (smoothness_weight > 0.0) {
-    // Room for the smoothness rows before appending them (else the first append copies every entry).
+    // Room for exactly the smoothness rows: one copy of the entries here, not a doubling of capacity.
     const std::size_t extra_rows = std::size_t(s.unknowns) + (smoothness == Smoothness::first_order && edges ? edges->size() : 0);
     s.column.reserve(s.column.size() + 2 * extra_rows);
     s.value.reserve(s.value.size() + 2 * extra_rows);

@@ -42,7 +42,7 @@ struct BilateralEvolutionOptions final : Options {
   double min_relative_decrease = 1e-3;
   /// Stop at the patience-th slow iteration in a row (that step is not taken; the slow ones before it
   /// are, as each still lowers e_avr). 1: stop at the first. A step that raises e_avr always stops.
-  /// 2 (ours): fandisk's corners go on converging after a slow step (e_max 10.0 -> 9.0e-3), the noisy
+  /// 2 (ours): fandisk's corners go on converging after a slow step (e_max 10.0e-3 -> 9.0e-3), the noisy
   /// armadillo stops one step later (configs/ablation_bilateral_stop.yaml).
   int patience = 2;
   /// Detect the sharp vertices again on every iteration's mesh (otherwise once, on the input).
@@ -56,6 +56,23 @@ struct BilateralEvolutionOptions final : Options {
 
   void visit(FieldVisitor& v) override;
   void check() const override;
+};
+
+/// The stopping rule of the evolution's loop (paper §4: until e_avr no longer decreases), with a threshold
+/// and a patience. Fed each iteration's e_avr against the best so far, it says whether to take the step
+/// or to stop (and then why: "rose" when e_avr did not fall, "slow" at the patience-th iteration in a
+/// row that lowered it by less than min_relative_decrease). Patience 1 stops at the first slow one.
+class StoppingRule {
+ public:
+  StoppingRule(double min_relative_decrease, int patience) : threshold_(min_relative_decrease), patience_(patience) {}
+  /// "" to take the step; else the reason to stop without it ("rose" or "slow"; NaN counts as a rise).
+  std::string judge(double e, double best_e);
+  int slow_in_a_row() const { return slow_in_a_row_; }
+
+ private:
+  double threshold_;
+  int patience_;
+  int slow_in_a_row_ = 0;
 };
 
 struct BilateralEvolutionResult {

@@ -2,9 +2,19 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#endif
+
+// Sanitizers replace malloc: mallopt() is refused (ASan, LSan) or ignored (TSan) there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define DTSL_SANITIZER_ALLOCATOR 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define DTSL_SANITIZER_ALLOCATOR 1
+#endif
 #endif
 
 namespace dtsl {
@@ -17,11 +27,18 @@ std::string& configuration() {
 }
 
 std::string configure(long top_pad_mib) {
-#if defined(__GLIBC__)
+  const char* choice = std::getenv("DTSL_ALLOCATOR");
+  if (choice && std::strcmp(choice, "default") == 0) return "the C library's defaults (DTSL_ALLOCATOR=default)";
+#if defined(DTSL_SANITIZER_ALLOCATOR)
+  (void)top_pad_mib;
+  return "the sanitizer's allocator (not configured)";
+#elif defined(__GLIBC__)
   if (std::getenv("MALLOC_TOP_PAD_")) return "glibc, MALLOC_TOP_PAD_ from the environment";
-  if (top_pad_mib <= 0) return "glibc defaults";
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.top_pad")) return "glibc, top_pad from GLIBC_TUNABLES";
+  if (top_pad_mib <= 0) return "glibc, not changed";
   const long mib = std::min(top_pad_mib, 2047L);  // mallopt takes an int of bytes
-  if (mallopt(M_TOP_PAD, int(mib * 1024 * 1024)) != 1) return "glibc defaults (mallopt refused M_TOP_PAD)";
+  if (mallopt(M_TOP_PAD, int(mib * 1024 * 1024)) != 1) return "glibc, not changed (mallopt refused M_TOP_PAD)";
   return "glibc, M_TOP_PAD " + std::to_string(mib) + " MiB";
 #else
   (void)top_pad_mib;

@@ -1,4 +1,5 @@
-// Process-wide tuning of the C library's allocator, called once by each executable's main().
+// Process-wide tuning of the C library's allocator, called once by `dtsl`'s and the benches' main(),
+// before any thread starts.
 #pragma once
 
 #include <string>
@@ -9,10 +10,16 @@ namespace dtsl {
 /// (glibc's M_TOP_PAD). Every evolution step builds and drops least-squares systems of tens to hundreds
 /// of MB; with glibc's defaults each step faulted its pages in afresh, and the page faults (serialised
 /// between the OpenMP threads, and dear in a virtual machine) were up to a quarter of the wall time.
-/// `bench/compare_builds.sh` (3 alternating runs, 2 threads), together with the rows' reservations in
-/// least_squares_rows.cpp: fandisk 8.22 -> 5.86 s, the 25k armadillo 22.4 -> 18.8 s, meshes identical.
-/// A user's own MALLOC_TOP_PAD_ in the environment wins; 0 leaves the allocator alone. Returns what was
-/// done; without glibc it does nothing and says so.
+/// Measured with MALLOC_TOP_PAD_ in the environment, which does the same (session 25, single runs, 2
+/// threads): fandisk 7.4 -> 5.4 s, the 25k armadillo 27.4 -> 19.1 s; `bench/compare_builds.sh` of the
+/// builds before and after (3 alternating runs): fandisk 8.22 -> 5.86 s, armadillo 22.4 -> 18.8 s,
+/// meshes byte-identical. Side effect: glibc then stops adapting its mmap threshold, so blocks of
+/// 128 KiB or more that do not fit the retained heap are mmapped each time.
+///
+/// Left alone (and said so) when DTSL_ALLOCATOR=default is in the environment (for A/B timings against
+/// glibc's defaults), when the user set MALLOC_TOP_PAD_ or glibc.malloc.top_pad in GLIBC_TUNABLES, when
+/// top_pad_mib <= 0, under a sanitizer (its own allocator ignores mallopt), or without glibc. Returns
+/// what was done; not thread-safe (call it first thing in main()).
 std::string configure_allocator(long top_pad_mib = 256);
 
 /// What the last configure_allocator() did ("not configured" before any call), for a run's provenance.

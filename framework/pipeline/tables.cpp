@@ -69,13 +69,22 @@ bool resolve(const std::string& name, ColumnDef& out) {
              }};
       return true;
     }
-    if (base == "stage") {  // stage@STAGE.KEY: a key of a stage's own record, e.g. stage@B-Evl.iterations
+    if (base == "stage") {  // stage@STAGE.KEY[.KEY...]: a value of a stage's summary, e.g. stage@B-Evl.iterations
       const auto dot = label.find('.');
-      if (dot == std::string::npos || dot == 0 || dot + 1 == label.size()) return false;
-      const std::string stage = label.substr(0, dot), key = label.substr(dot + 1);
-      out = {stage + " " + key, [stage, key](const json& r) {
-               const json* s = stage_with(r, "name", stage);
-               const json* v = s ? at(*s, {"summary", key.c_str()}) : nullptr;
+      if (dot == std::string::npos || dot == 0 || dot + 1 == label.size() || label.back() == '.' ||
+          label.find("..") != std::string::npos)
+        return false;
+      const std::string stage = label.substr(0, dot);
+      std::vector<std::string> path;  // nested keys: stage@B-Evl.degenerate_removal.collapsed
+      for (std::size_t begin = dot + 1; begin <= label.size();) {
+        const std::size_t end = std::min(label.find('.', begin), label.size());
+        path.push_back(label.substr(begin, end - begin));
+        begin = end + 1;
+      }
+      out = {stage + " " + label.substr(dot + 1), [stage, path](const json& r) {
+               const json* v = stage_with(r, "name", stage);
+               v = v && v->contains("summary") ? &(*v)["summary"] : nullptr;
+               for (const std::string& key : path) v = v && v->is_object() && v->contains(key) ? &(*v)[key] : nullptr;
                if (!v) return std::string("–");
                if (v->is_string()) return v->get<std::string>();
                return v->is_number_float() ? number(v, 1, "%.4g") : v->dump();
@@ -158,8 +167,8 @@ std::string describe_columns() {
   return "dataset pipeline type np nv nf e_avr e_max accuracy completeness chamfer hausdorff nc fscore "
          "watertight components genus min_angle valence6 time memory normals status, and per stage: "
          "e_avr@LABEL e_max@LABEL nv@LABEL (stage mesh label, e.g. MI MD MS), chamfer@LABEL accuracy@LABEL "
-         "completeness@LABEL (with metrics.stage_surfaces), time@STAGE, stage@STAGE.KEY (a key of the stage's "
-         "record, e.g. stage@B-Evl.iterations), summary@KEY";
+         "completeness@LABEL (with metrics.stage_surfaces), time@STAGE, stage@STAGE.KEY (a value of the stage's "
+         "summary, nested keys joined by '.', e.g. stage@B-Evl.iterations), summary@KEY";
 }
 
 void check_columns(const std::vector<std::string>& columns) {

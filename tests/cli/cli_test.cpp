@@ -228,7 +228,8 @@ datasets:
 pipelines:
   - {name: dtsl, type: dtsl}
 table: {columns: [dataset, e_avr@MI, e_avr@MD, e_avr@MS, time@TL, time@MT, time@D-Map, time@B-Evl, genus,
-                  stage@B-Evl.iterations, stage@B-Evl.stop_reason, stage@TL.best_iteration, chamfer@MI]}
+                  stage@B-Evl.iterations, stage@B-Evl.stop_reason, stage@TL.best_iteration,
+                  stage@B-Evl.degenerate_removal.collapsed, chamfer@MI]}
 )");
   const Outcome o = dtsl("run " + config + " --results " + (tmp.path / "results").string() + " --run-id r");
   INFO(o.output);
@@ -249,6 +250,19 @@ table: {columns: [dataset, e_avr@MI, e_avr@MD, e_avr@MS, time@TL, time@MT, time@
   row = row.substr(0, row.find('\n'));
   CHECK(row.substr(row.rfind('|', row.size() - 2)) == "| – |");
   CHECK(!contains(row.substr(0, row.rfind('|', row.size() - 2)), "–"));
+  // A stage column without a key (or with an empty one) is an error naming it, before anything runs.
+  for (const char* bad : {"stage@B-Evl", "stage@B-Evl.", "stage@.iterations", "stage@B-Evl..x"}) {
+    const std::string config_bad = tmp.file("bad.yaml", std::string(R"(experiment: bad
+datasets:
+  - {name: torus, shape: torus, sampler: {type: area, count: 300}}
+pipelines:
+  - {name: dtsl, type: dtsl}
+table: {columns: [dataset, ")") + bad + "\"]}\n");
+    const Outcome b = dtsl("run " + config_bad + " --results " + (tmp.path / "results").string() + " --run-id b");
+    INFO(bad << ": " << b.output);
+    CHECK(b.code == 1);
+    CHECK(contains(b.output, bad));
+  }
 }
 
 TEST_CASE("metrics.stage_surfaces compares every stage's mesh with the truth") {

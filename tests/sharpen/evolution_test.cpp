@@ -79,6 +79,40 @@ TEST_CASE("eigen_ldlt and ceres drive the same evolution on the block", "[sharpe
   CHECK(once.summary["e_avr_final"].get<double>() < 0.9 * once.summary["e_avr_initial"].get<double>());
 }
 
+TEST_CASE("StoppingRule: a rise stops at once, slow steps only the patience-th in a row", "[sharpen][stop]") {
+  // Feeds a sequence of e_avr values (the best so far updated on every step taken); returns the index of
+  // the step that stops and its reason, or (-1, "") if none does.
+  const auto run = [](double threshold, int patience, const std::vector<double>& e) {
+    StoppingRule rule(threshold, patience);
+    double best = 1.0;
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const std::string why = rule.judge(e[k], best);
+      if (!why.empty()) return std::make_pair(int(k), why);
+      best = e[k];
+    }
+    return std::make_pair(-1, std::string());
+  };
+  // Gains of 10 %, 0.05 % (slow), 10 %, 0.05 %, 0.05 %: patience 2 goes on after a lone slow step.
+  const std::vector<double> pause = {0.9, 0.89955, 0.809595, 0.80919, 0.80879};
+  CHECK(run(1e-3, 1, pause) == std::make_pair(1, std::string("slow")));
+  CHECK(run(1e-3, 2, pause) == std::make_pair(4, std::string("slow")));  // slow in a row, not in total
+  CHECK(run(1e-3, 3, pause) == std::make_pair(-1, std::string()));
+  // A rise, or no change, stops whatever the patience, even right after a fast step.
+  CHECK(run(1e-3, 3, {0.9, 0.95}) == std::make_pair(1, std::string("rose")));
+  CHECK(run(1e-3, 3, {0.9, 0.9}) == std::make_pair(1, std::string("rose")));
+  CHECK(run(1e-3, 3, {0.9, std::nan("")}) == std::make_pair(1, std::string("rose")));
+  // Threshold 0: every fall counts, so only a rise stops (the paper's rule word for word).
+  CHECK(run(0.0, 1, pause) == std::make_pair(-1, std::string()));
+  // Patience 1 is the rule before patience existed: stop when e is not below best x (1 - threshold).
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> change(-0.01, 0.05), threshold(0.0, 0.02);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const double t = threshold(random), best = 1.0, e = best * (1.0 - change(random));
+    StoppingRule rule(t, 1);
+    CHECK(rule.judge(e, best).empty() == (e < best * (1.0 - t)));
+  }
+}
+
 TEST_CASE("the stopping rule: slow steps are taken until the patience-th in a row, which is not", "[sharpen][stop]") {
   const auto points = block_data();
   const TriangleMesh start = sharpen_test::rounded_block_mesh(0.08, 0.04);
@@ -94,6 +128,7 @@ TEST_CASE("the stopping rule: slow steps are taken until the patience-th in a ro
     REQUIRE(h.size() == std::size_t(patience) + 1);  // the initial e_avr, then one per step tried
     CHECK(r.summary["iterations"].get<int>() == patience - 1);
     CHECK(r.summary["stop_reason"] == "e_avr stopped falling");
+    CHECK(r.summary["stop_detail"] == "slow");
     for (int k = 1; k <= patience; ++k) CHECK(h[k].get<double>() < h[k - 1].get<double>());  // each still falls
     // The result is the last step taken, not the one that stopped the loop.
     CHECK(r.summary["e_avr_evolved"].get<double>() == h[patience - 1].get<double>());
