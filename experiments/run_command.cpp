@@ -15,6 +15,7 @@ int run_command(Args& args, const std::vector<std::string>& command_line) {
   RunnerOptions options;
   const std::vector<std::string> overrides = args.values("set");
   const std::string jobs = args.value("jobs", "1");
+  const std::string threads = args.value("threads");
   options.results_root = args.value("results", "results");
   options.run_id = args.value("run-id");
   options.progress = !args.flag("quiet");
@@ -30,6 +31,7 @@ int run_command(Args& args, const std::vector<std::string>& command_line) {
   } catch (const std::exception&) {
     throw UsageError{"--jobs: expected a number, got '" + jobs + "'"};
   }
+  if (!threads.empty()) options.threads = Args::integer("threads", threads, 1, 1024);
   if (!options.run_id.empty() &&
       options.run_id.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
           std::string::npos)

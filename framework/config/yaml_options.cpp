@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "framework/core/error.hpp"
+#include "framework/core/suggest.hpp"
 
 namespace dtsl {
 
@@ -89,7 +90,7 @@ class YamlReader final : public FieldVisitor {
       if (!used_.count(k)) {
         std::string known;
         for (const std::string& n : names_) known += (known.empty() ? "" : ", ") + n;
-        throw ConfigError(key(k.c_str()) + ": unknown key" +
+        throw ConfigError(key(k.c_str()) + ": unknown key" + did_you_mean(k, names_) +
                           (known.empty() ? " (this plugin has no options)" : "; known keys: " + known));
       }
     }

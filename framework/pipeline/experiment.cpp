@@ -17,7 +17,7 @@
 namespace dtsl {
 
 void MetricsOptions::visit(FieldVisitor& v) {
-  v.field("samples", samples, "area-uniform samples on result and ground truth, each (DESIGN.md §5)");
+  v.field("samples", samples, "area-uniform samples on result and ground truth, each (docs/design.md §5)");
   v.field("fscore_tau_ratio", fscore_tau_ratio, "F-score threshold as a fraction of the truth's bbox diagonal");
   v.field("stage_surfaces", stage_surfaces,
           "also compare every stage's mesh (MI, MD, MS) with the ground truth: which phase gains or loses "

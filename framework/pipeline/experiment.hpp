@@ -12,7 +12,7 @@
 
 namespace dtsl {
 
-/// Options of the ground-truth comparison (DESIGN.md §5).
+/// Options of the ground-truth comparison (docs/design.md §5).
 struct MetricsOptions final : Options {
   int samples = 100000;            ///< area-uniform samples on result and ground truth each
   double fscore_tau_ratio = 0.005;  ///< F-score threshold as a fraction of the truth's bbox diagonal

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -46,12 +47,21 @@ struct ReconstructionResult {
 struct RunContext {
   std::uint64_t seed = 1;
   int threads = 1;
+  /// Called as each stage starts, with its short name (TL, MT, ...) and what it does, for progress
+  /// displays; may be empty. Reconstructors without stages never call it.
+  std::function<void(const std::string& stage, const std::string& what)> on_stage;
+  void stage_started(const std::string& stage, const std::string& what) const {
+    if (on_stage) on_stage(stage, what);
+  }
 };
 
 class Reconstructor {
  public:
   virtual ~Reconstructor() = default;
   virtual Options& options() = 0;
+  /// The fewest points reconstruct() accepts, checked by callers before any work: 4 (a tetrahedron's
+  /// worth) unless a reconstructor needs more.
+  virtual std::size_t minimum_points() const { return 4; }
   /// Throws AlgorithmError for input it cannot handle (too few points, too large, no normals where
   /// they are required), naming the problem.
   virtual ReconstructionResult reconstruct(const PointCloud& points, const RunContext& context) = 0;

@@ -29,6 +29,33 @@ nlohmann::json measure_mesh(const TriangleMesh& mesh, const Dataset& dataset, co
   return j;
 }
 
+nlohmann::json write_stage_files(const ReconstructionResult& result, const std::string& dir) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageRecord& s : result.stages) {
+    nlohmann::json js = {{"name", s.name}, {"seconds", s.seconds}, {"summary", s.summary}};
+    if (s.mesh) {
+      const std::string label = s.mesh_label.empty() ? s.name : s.mesh_label;
+      js["mesh_label"] = label;
+      js["file"] = "stage_" + label + ".ply";
+      write_mesh(dir + "/stage_" + label + ".ply", *s.mesh);
+    }
+    if (s.lines) {  // line geometry for figures (the T-mesh), atomically like the meshes
+      const std::string file = s.lines->name + ".obj";
+      const bool plain = !s.lines->name.empty() &&
+                         std::all_of(s.lines->name.begin(), s.lines->name.end(), [](unsigned char c) {
+                           return std::isalnum(c) || c == '_' || c == '-';
+                         });
+      if (!plain) throw AlgorithmError("stage " + s.name + ": line set name '" + s.lines->name + "' is not a plain file stem");
+      write_line_obj(dir + "/" + file, s.lines->segments, s.lines->label + " of stage " + s.name);
+      js["lines_file"] = file;
+      js["lines_label"] = s.lines->label;
+      js["lines_segments"] = s.lines->segments.size();
+    }
+    stages.push_back(js);
+  }
+  return stages;
+}
+
 nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
                            std::uint64_t seed, const std::string& run_dir) {
   nlohmann::json record;
@@ -55,30 +82,11 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
     record["summary"] = result.summary;
 
     fs::create_directories(run_dir);
-    nlohmann::json stages = nlohmann::json::array();
-    for (const StageRecord& s : result.stages) {
-      nlohmann::json js = {{"name", s.name}, {"seconds", s.seconds}, {"summary", s.summary}};
-      if (s.mesh) {
-        const std::string label = s.mesh_label.empty() ? s.name : s.mesh_label;
-        js["mesh_label"] = label;
-        js["file"] = "stage_" + label + ".ply";
-        write_mesh(run_dir + "/stage_" + label + ".ply", *s.mesh);
-        js["measures"] = measure_mesh(*s.mesh, dataset, metrics.stage_surfaces ? &metrics : nullptr, seed);
-      }
-      if (s.lines) {  // line geometry for figures (the T-mesh), atomically like the meshes
-        const std::string file = s.lines->name + ".obj";
-        const bool plain = !s.lines->name.empty() &&
-                           std::all_of(s.lines->name.begin(), s.lines->name.end(), [](unsigned char c) {
-                             return std::isalnum(c) || c == '_' || c == '-';
-                           });
-        if (!plain) throw AlgorithmError("stage " + s.name + ": line set name '" + s.lines->name + "' is not a plain file stem");
-        write_line_obj(run_dir + "/" + file, s.lines->segments, s.lines->label + " of stage " + s.name);
-        js["lines_file"] = file;
-        js["lines_label"] = s.lines->label;
-        js["lines_segments"] = s.lines->segments.size();
-      }
-      stages.push_back(js);
-    }
+    nlohmann::json stages = write_stage_files(result, run_dir);
+    for (std::size_t i = 0; i < result.stages.size(); ++i)
+      if (result.stages[i].mesh)
+        stages[i]["measures"] =
+            measure_mesh(*result.stages[i].mesh, dataset, metrics.stage_surfaces ? &metrics : nullptr, seed);
     record["stages"] = stages;
     write_mesh(run_dir + "/final.ply", result.mesh);
     record["final"] = measure_mesh(result.mesh, dataset, &metrics, seed);

@@ -1,4 +1,4 @@
-// One run: a pipeline on a dataset, its meshes written, its metrics measured (DESIGN.md §5). The same
+// One run: a pipeline on a dataset, its meshes written, its metrics measured (docs/design.md §5). The same
 // function serves `dtsl run` (in a child process per run) and the tests.
 #pragma once
 
@@ -8,6 +8,7 @@
 
 #include "framework/datasets/dataset.hpp"
 #include "framework/pipeline/experiment.hpp"
+#include "framework/pipeline/reconstructor.hpp"
 
 namespace dtsl {
 
@@ -17,6 +18,11 @@ namespace dtsl {
 /// Never throws for errors of the pipeline itself.
 nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
                            std::uint64_t seed, const std::string& run_dir);
+
+/// Writes `result`'s stage meshes (stage_<label>.ply) and line sets (<name>.obj) into `dir`, each
+/// atomically, and returns a record per stage: name, seconds, summary and the files written. Throws
+/// AlgorithmError for a line set whose name is not a plain file stem.
+nlohmann::json write_stage_files(const ReconstructionResult& result, const std::string& dir);
 
 /// The errors, mesh statistics and (with a ground truth) surface metrics of `mesh`.
 nlohmann::json measure_mesh(const TriangleMesh& mesh, const Dataset& dataset, const MetricsOptions* metrics,

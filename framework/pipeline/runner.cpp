@@ -17,11 +17,9 @@
 #include <set>
 #include <thread>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "framework/core/atomic_file.hpp"
+#include "framework/core/cores.hpp"
 #include "framework/core/error.hpp"
 #include "framework/pipeline/dataset_cache.hpp"
 #include "framework/pipeline/provenance.hpp"
@@ -166,6 +164,7 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
 
   std::map<pid_t, Child> running;
   std::size_t next = 0, finished = 0;
+  const int threads_per_run = std::max(1, free_cores() / std::max(1, options.jobs));
   auto finish = [&](const Child& c, const json& record) {
     ++finished;
     const RunSpec& run = ex.runs[c.index];
@@ -195,12 +194,11 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
         if (::getppid() != parent) ::_exit(3);  // the sweep died before prctl
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
-#ifdef _OPENMP
-        // N runs side by side share the cores: more threads than cores make OpenMP's barriers spin
-        // against each other (measured: a run 2-6x slower). OMP_NUM_THREADS, when set, decides.
-        if (options.jobs > 1 && !std::getenv("OMP_NUM_THREADS"))
-          omp_set_num_threads(std::max(1, omp_get_num_procs() / options.jobs));
-#endif
+        // N runs side by side share the free cores: more threads than free cores make OpenMP's threads
+        // wait on each other at every barrier (a run 2-6x slower). OMP_NUM_THREADS, when set, decides
+        // unless `threads` is given.
+        if (options.threads > 0) set_threads(options.threads);
+        else if (!std::getenv("OMP_NUM_THREADS")) set_threads(threads_per_run);
         // The libraries' own chatter (PCL prints to stdout/stderr) goes to the run's log, not the terminal.
         std::error_code ec;
         fs::create_directories(run_dir, ec);

@@ -17,6 +17,7 @@ struct RunnerOptions {
   std::string run_id;                    ///< default: default_run_id(experiment, shard)
   ShardSpec shard;                       ///< run only this part of the run list (shard.hpp)
   int jobs = 1;                          ///< runs in parallel (child processes)
+  int threads = 0;                       ///< threads per run; 0: the free cores (cores.hpp) over jobs
   bool progress = true;                  ///< progress lines on stderr
   std::vector<std::string> command_line;  ///< for provenance.json
 };

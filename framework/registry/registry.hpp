@@ -12,6 +12,7 @@
 
 #include "framework/config/options.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/suggest.hpp"
 
 namespace dtsl {
 
@@ -56,7 +57,7 @@ class Registry final : public RegistryBase {
     if (it == entries_.end()) {
       std::string known;
       for (const auto& e : entries_) known += (known.empty() ? "" : ", ") + e.first;
-      throw ConfigError(context + ": unknown " + kind() + " '" + name + "'; known: " +
+      throw ConfigError(context + ": unknown " + kind() + " '" + name + "'" + did_you_mean(name, names()) + "; known: " +
                         (known.empty() ? "(none registered)" : known));
     }
     return it->second.make();

@@ -1,9 +1,12 @@
-// Timings of T-mesh construction and T-spline evaluation (issue 3, item 4). Hidden from the default
-// run (tag [.]): `test_tspline "[speed]"` prints them. CPU time of this thread, so that other load on
-// a shared machine inflates the numbers less than wall-clock time would.
+// Timings of T-mesh construction and T-spline evaluation. Hidden from the default run (tag [.]):
+// `test_tspline "[speed]"` prints them. CPU time of this thread, so that other load on a shared machine
+// inflates the numbers less than wall-clock time would. What is timed is also checked: the three
+// evaluation orders give the same value, the order of the queries changes no value, the active basis is
+// a partition of unity, and the quasi-interpolant of a sphere's distance is close to it near the data.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <iostream>
 
@@ -48,32 +51,54 @@ TEST_CASE("speed: T-mesh construction and evaluation at 1e6 points", "[.][speed]
     std::sort(coherent.begin(), coherent.end(),
               [&](const Vec3& a, const Vec3& b) { return basis->octree().locate(a) < basis->octree().locate(b); });
     double sink = 0;
+    double value_sum[3] = {0, 0, 0};  // sum of f over the last timed set, per derivative order
     auto time = [&](const std::vector<Vec3>& q, int order) {
       const double s = cpu_seconds();
       Vec3 g;
       Mat3 h;
+      double sum = 0;
       for (const Vec3& x : q) {
-        sink += order == 0 ? f.evaluate(x) : order == 1 ? f.evaluate(x, &g) : f.evaluate(x, &g, &h);
+        sum += order == 0 ? f.evaluate(x) : order == 1 ? f.evaluate(x, &g) : f.evaluate(x, &g, &h);
         sink += order > 0 ? g.x() : 0.0;
       }
-      return (cpu_seconds() - s) / q.size() * 1e9;
+      const double seconds = cpu_seconds() - s;
+      value_sum[order] = sum;
+      sink += sum;
+      return seconds / q.size() * 1e9;
+    };
+    // The same value whatever the order of derivatives asked for, and whatever the query order.
+    auto check_orders_agree = [&](double reference) {
+      for (const double v : value_sum) CHECK(v == Approx(reference).epsilon(1e-9).margin(1e-6));
     };
     std::cout << "  ns per evaluation (f / f+grad / f+grad+Hessian):\n"
               << "    1e6 random points in the domain, random order: " << time(random, 0) << " / "
               << time(random, 1) << " / " << time(random, 2) << "\n"
               << "    1e6 points near the data, random order:        " << time(near, 0) << " / " << time(near, 1)
-              << " / " << time(near, 2) << "\n"
-              << "    the same points in leaf order:                 " << time(coherent, 0) << " / "
+              << " / " << time(near, 2) << "\n";
+    const double near_sum = value_sum[0];
+    check_orders_agree(near_sum);
+    std::cout << "    the same points in leaf order:                 " << time(coherent, 0) << " / "
               << time(coherent, 1) << " / " << time(coherent, 2) << "\n";
+    check_orders_agree(near_sum);
     ActiveBasis active;
     const double s = cpu_seconds();
     long n = 0;
+    double worst_unity = 0;
     for (std::size_t k = 0; k < 200000; ++k) {
       basis->active(coherent[k * 5], active);
       n += active.size();
+      double unity = 0;
+      for (const double r : active.value) unity += r;
+      worst_unity = std::max(worst_unity, std::abs(unity - 1.0));
     }
     std::cout << "    active basis (R_i, grad R_i), leaf order: " << (cpu_seconds() - s) / 200000 * 1e9
               << " ns, " << double(n) / 200000 << " functions on average\n";
     CHECK(std::isfinite(sink));
+    CHECK(n > 0);
+    CHECK(worst_unity < 1e-9);  // rational basis functions sum to one
+    // A quasi-interpolant reproduces the sphere's distance near the data up to the cells' size.
+    double worst = 0;
+    for (std::size_t k = 0; k < 1000; ++k) worst = std::max(worst, std::abs(f.evaluate(near[k]) - (near[k].norm() - 0.5)));
+    CHECK(worst < 0.05);
   }
 }
