@@ -6,6 +6,8 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/property_map.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "framework/core/error.hpp"
@@ -61,6 +63,30 @@ NearestData DataDistance::nearest(const Vec3& x) const {
   r.distance = diff.norm();
   if (r.distance > 0.0) r.direction = diff / r.distance;
   return r;
+}
+
+std::vector<double> DataDistance::local_spacing(int k) const {
+  if (k < 1) throw AlgorithmError("local spacing: k must be at least 1, got " + std::to_string(k));
+  const long n = long(impl_->points.size());
+  const int neighbours = int(std::min<long>(k, n - 1));
+  std::vector<double> spacing(n, 0.0);
+  if (neighbours < 1) return spacing;
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long i = 0; i < n; ++i) {
+    // k + 1 neighbours: the point itself comes first at distance 0.
+    Search search(*impl_->tree, impl_->points[i], unsigned(neighbours + 1), 0.0, true,
+                  Distance(CGAL::make_property_map(impl_->points)));
+    double sum = 0.0;
+    int count = 0;
+    for (const auto& hit : search) {
+      if (hit.first == std::size_t(i)) continue;
+      if (count == neighbours) break;
+      sum += std::sqrt(hit.second);
+      ++count;
+    }
+    spacing[i] = count > 0 ? sum / count : 0.0;
+  }
+  return spacing;
 }
 
 std::vector<NearestData> DataDistance::nearest_all(const std::vector<Vec3>& queries) const {

@@ -1,5 +1,5 @@
 // d(x): the distance from x to the nearest data point, and grad d, its unit direction away from that
-// point — what every data-driven velocity of the level-set evolution reads (DESIGN.md §1,
+// point — what every data-driven velocity of the level-set evolution reads (docs/design.md §1,
 // "d(x) = distance to the nearest data point from a kd-tree, grad d its unit direction away from that
 // point"). A CGAL kd-tree behind a pimpl, so CGAL stays out of the headers.
 #pragma once
@@ -32,6 +32,11 @@ class DataDistance {
   std::vector<NearestData> nearest_all(const std::vector<Vec3>& queries) const;
 
   std::size_t size() const;
+
+  /// The local sampling spacing at every data point: the mean distance to its `k` nearest other data
+  /// points (k >= 1; fewer when there are fewer points). Scale-free lengths of the evolution are
+  /// multiples of it. OpenMP-parallel; throws AlgorithmError for k < 1.
+  std::vector<double> local_spacing(int k) const;
 
  private:
   struct Impl;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "algorithms/evolution/data_distance.hpp"
+#include "algorithms/evolution/support.hpp"
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
@@ -26,6 +27,7 @@ nlohmann::json to_json(const IterationRecord& r) {
                       {"band_points", r.band_points},
                       {"unknowns", r.unknowns},
                       {"guarded", r.guarded},
+                      {"unsupported_points", r.unsupported_points},
                       {"velocity_residual", r.velocity_residual},
                       {"mean_speed", r.mean_speed},
                       {"max_speed", r.max_speed},
@@ -50,13 +52,16 @@ struct Timings {
   }
 };
 
-/// The velocity at every zero-set point, and the distance d(x_j) to the data there.
+/// The velocity at every zero-set point, and the distance d(x_j) to the data there. With `support`
+/// (velocities that want it), stalled points are tested for support and asked again.
 std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& data, const Velocity& velocity,
-                           double curvature_clamp, std::vector<double>& distance) {
+                           double curvature_clamp, std::vector<double>& distance, const TSpline& f,
+                           const SupportData* support, int& unsupported) {
   const long n = long(samples.surface.size());
   std::vector<double> v(n);
   distance.resize(n);
-#pragma omp parallel for schedule(dynamic, 64)
+  long count = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : count)
   for (long j = 0; j < n; ++j) {
     const SurfacePoint& p = samples.surface[j];
     VelocitySample s;
@@ -69,7 +74,13 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
     s.distance_gradient = nearest.direction;
     s.cell_size = p.cell_size;
     v[j] = velocity.speed(s);
+    if (support && v[j] > -kStalledSpeed && spans_empty_space(f, *support, p.position, s.normal, nearest)) {
+      s.unsupported = true;
+      v[j] = velocity.speed(s);
+      count += 1;
+    }
   }
+  unsupported = int(count);
   return v;
 }
 
@@ -100,6 +111,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
 
   const std::vector<double> floors = sign_floors(basis, options.sign_guard);
   const DataDistance data(points);
+  std::optional<SupportData> support;
+  if (velocity.wants_support()) support.emplace(data, points);
   TSpline f = initial;
   std::vector<double> best = f.coefficients();
   std::vector<double> last_update(basis.size(), 0.0);
@@ -110,8 +123,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   std::string stop_reason;
 
   std::vector<std::vector<double>> iterates;  // for `midway`: small (coarse T-mesh, tens of steps)
-  // The band's gradient rows at the sub-cell centres, computed once per site (issue 7: recomputing them
-  // step after step was 70 % of the rows' time).
+  // The band's gradient rows at the sub-cell centres, computed once per site (recomputing them step
+  // after step is 70 % of the rows' time).
   const int b = std::max(1, options.band_subdivision);
   GradientCache gradients(basis, tmesh.leaf_count() * b * b * b);
   for (int it = 0;; ++it) {
@@ -138,7 +151,8 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
     }
     part.restart();
     std::vector<double> surface_distance;
-    const std::vector<double> v = speeds(samples, data, velocity, options.curvature_clamp, surface_distance);
+    const std::vector<double> v = speeds(samples, data, velocity, options.curvature_clamp, surface_distance, f,
+                                         support ? &*support : nullptr, record.unsupported_points);
     timings.velocity += part.seconds();
     double sum_speed = 0.0, max_speed = 0.0, min_ratio = std::numeric_limits<double>::infinity();
     record.min_gradient = std::numeric_limits<double>::infinity();
@@ -161,7 +175,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
     const double progress = fit.mean + record.mean_surface_distance;
     record.max_speed = max_speed;
 
-    // Stopping rule (DESIGN.md §1): at rest, or the distance between data and level set no longer
+    // Stopping rule (docs/design.md §1): at rest, or the distance between data and level set no longer
     // decreasing, or the cap. The iterate kept is the one closest to the data: `distance` never comes
     // to rest and `geodesic` jitters about the data, so the last iterate is not always the best.
     if (progress < best_distance) {
@@ -170,7 +184,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       best_iteration = it;
     }
     // Stalling is judged on the mean of the last two values: `geodesic` jitters with period two about
-    // the data (DESIGN.md §1) while a membrane elsewhere may still be moving (a torus hole opening).
+    // the data (docs/design.md §1) while a membrane elsewhere may still be moving (a torus hole opening).
     const double smoothed = 0.5 * (progress + (it > 0 ? previous_progress : progress));
     previous_progress = progress;
     if (smoothed < reference * (1.0 - options.distance_tolerance)) {
@@ -312,7 +326,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
   nlohmann::json rounds = nlohmann::json::array();
   const auto record_round = [&](const LevelSetResult& r, int round) {
-    // The solver's share of the round (CG iterations grow with the T-mesh: where the time goes, issue 7).
+    // The solver's share of the round (CG iterations grow with the T-mesh: where the time goes).
     long solver_iterations = 0;
     int unknowns = 0;
     double solve_seconds = 0.0;

@@ -1,4 +1,4 @@
-// Phase 1 of the paper (§2.1, its ref. [55]; DESIGN.md §1): the T-spline level set that captures the
+// Phase 1 of the paper (§2.1, its ref. [55]; docs/design.md §1): the T-spline level set that captures the
 // topology and outline of the data by itself.
 //
 //   T-mesh from the points (octree, algorithms/tspline) -> f_0 = distance to the enclosing sphere
@@ -18,7 +18,7 @@
 // the zero set is re-sampled over the whole T-mesh every step and nothing assumes a genus or a number
 // of components.
 //
-// Stopping (DESIGN.md §1, made two-sided, ours): the progress measure is the mean data-to-level-set
+// Stopping (docs/design.md §1, made two-sided, ours): the progress measure is the mean data-to-level-set
 // distance |f(p)| / |grad f(p)| plus the mean level-set-to-data distance d(x_j); the evolution stops
 // when mean |v| falls below velocity_tolerance ("at rest"), when that measure (averaged over the last
 // two steps: `geodesic` jitters with period two) has not fallen by distance_tolerance for `patience`
@@ -109,6 +109,7 @@ struct IterationRecord {
   double time_step = 0.0;            ///< dt of the step taken (0 for the last record: no step)
   int surface_points = 0, band_points = 0, unknowns = 0;
   int guarded = 0;                   ///< coefficients the no-nucleation guard held (sign_guard.hpp)
+  int unsupported_points = 0;        ///< zero-set points spanning empty space (support.hpp)
   double mean_speed = 0.0, max_speed = 0.0;  ///< mean and max |v| over the x_j
   double mean_distance = 0.0, max_distance = 0.0;  ///< data to level set, |f(p)| / |grad f(p)|
   double mean_surface_distance = 0.0;  ///< level set to data: mean d(x_j) over the zero-set samples
@@ -118,7 +119,7 @@ struct IterationRecord {
 };
 nlohmann::json to_json(const IterationRecord& r);
 
-/// Output of the stage (issue 3, item 3).
+/// Output of the stage: the level set, its history and the T-mesh (level_set_io.hpp writes them out).
 struct LevelSetResult {
   TSpline level_set;                    ///< T-mesh and coefficients (after the final refinement if on)
   TSpline evolved;                      ///< the evolution's result before the final refinement

@@ -1,4 +1,4 @@
-// Normal velocities of the level-set evolution (DESIGN.md §1; paper §2.1: "prescribed, data-driven
+// Normal velocities of the level-set evolution (docs/design.md §1; paper §2.1: "prescribed, data-driven
 // normal velocities ... motivated by earlier work in the field of image processing [9]"). The zero
 // level set moves with normal speed v, v < 0 inward (f is negative inside):
 //
@@ -26,7 +26,15 @@ struct VelocitySample {
   double distance = 0.0;          ///< d(x): distance to the nearest data point
   Vec3 distance_gradient = Vec3::Zero();  ///< grad d: unit direction away from that point (0 if d = 0)
   double cell_size = 0.0;         ///< side of the T-mesh leaf holding x (the local resolution)
+  /// Only for velocities whose wants_support() is true, and only where their speed without it is
+  /// slower inward than kStalledSpeed: the zero set spans empty space here (support.hpp), e.g. a
+  /// membrane over a through-hole or across the gap between two objects.
+  bool unsupported = false;
 };
+
+/// Inward speeds slower than this (in units of the far-field speed 1 of `geodesic`) count as stalled:
+/// only there is the support test (support.hpp, a ray per point) worth its cost.
+constexpr double kStalledSpeed = 0.5;
 
 class Velocity {
  public:
@@ -37,6 +45,9 @@ class Velocity {
   virtual std::unique_ptr<Velocity> clone() const = 0;
   /// The normal speed v at the sample; v < 0 moves the surface inward.
   virtual double speed(const VelocitySample& s) const = 0;
+  /// Whether speed() reads VelocitySample::unsupported; the evolution then tests support where the
+  /// speed without it is stalled and asks again with the answer.
+  virtual bool wants_support() const { return false; }
 };
 
 /// kappa = div (grad f / |grad f|) = (tr H - n^T H n) / |grad f| from the gradient and Hessian of f;

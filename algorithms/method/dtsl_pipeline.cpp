@@ -6,6 +6,7 @@
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/evolution.hpp"
 #include "algorithms/method/refinement_guard.hpp"
+#include "algorithms/method/stage_checks.hpp"
 #include "algorithms/method/tmesh_lines.hpp"
 #include "algorithms/polygonize/polygonizer.hpp"
 #include "algorithms/sharpen/bilateral_evolution.hpp"
@@ -96,7 +97,7 @@ class DtslPipeline final : public Reconstructor {
  public:
   Options& options() override { return options_; }
 
-  ReconstructionResult reconstruct(const PointCloud& cloud, const RunContext& /*context*/) override {
+  ReconstructionResult reconstruct(const PointCloud& cloud, const RunContext& context) override {
     if (cloud.size() < 4)
       throw AlgorithmError("dtsl: needs at least 4 points, got " + std::to_string(cloud.size()));
     check_finite(cloud, "dtsl input");
@@ -108,6 +109,7 @@ class DtslPipeline final : public Reconstructor {
     ReconstructionResult result;
 
     // TL: Phase 1, the T-spline level set (paper §2.1).
+    context.stage_started("TL", "evolving the T-spline level set");
     Stopwatch clock;
     LevelSetResult level = compute_level_set(points, options_.evolution);
     StageRecord tl{"TL", clock.seconds(), std::nullopt, "", level.summary, std::nullopt};
@@ -173,12 +175,16 @@ class DtslPipeline final : public Reconstructor {
     result.summary["nt"] = f.basis().size();
 
     // MT: the initial mesh MI (paper §2.2).
+    context.stage_started("MT", "triangulating the level set");
     clock.restart();
     int retries = 0;
     double step = delta;
     std::string fallback;
     std::optional<PolygonizeResult> mi = polygonize(f, level_set_points, step, retries, fallback);
+    const StageBounds bounds = stage_bounds(points);
+    const StageCheck mi_check = check_stage_mesh("MT", mi->mesh, bounds);
     StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary), std::nullopt};
+    mt.summary["output_check"] = mi_check.to_json();
     mt.summary["step"] = step;
     mt.summary["step_halvings"] = retries;
     if (!fallback.empty()) mt.summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
@@ -188,6 +194,7 @@ class DtslPipeline final : public Reconstructor {
     // D-Map: displacement along grad f (paper §3), with the refinement fallback on flipped triangles.
     TriangleMesh md = mi->mesh;
     if (options_.displacement) {
+      context.stage_started("D-Map", "displacing the mesh onto the data");
       clock.restart();
       DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
       // The data do not change between the refine-on-flip rounds: their noise is estimated once.
@@ -217,12 +224,18 @@ class DtslPipeline final : public Reconstructor {
           flips.push_back("polygonizer failed: refused");
           break;
         }
+        try {
+          check_stage_mesh("MT (refined near flips)", base->mesh, bounds);
+        } catch (const AlgorithmError&) {
+          flips.push_back("refined zero set out of bounds: refused");
+          break;
+        }
         part.restart();
         DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, round_displace);
         for (const char* key : {"noise_estimated", "noise_estimate"})  // what the figure came from
           if (dr.summary.contains(key)) again.summary[key] = dr.summary[key];
         round_seconds["displace"] = part.seconds();
-        flip_seconds.push_back(round_seconds);  // where D-Map's time goes (issue 7)
+        flip_seconds.push_back(round_seconds);  // where D-Map's time goes (docs/performance.md)
         flips.push_back(again.flipped_faces.size());
         // Refinement must not change the topology Phase 1 found (a fit near a thin part can open a
         // spurious handle): such a round is refused and the loop ends.
@@ -252,6 +265,7 @@ class DtslPipeline final : public Reconstructor {
       result.summary["delta"] = step;
       result.summary["nt"] = f.basis().size();
       md = dr.mesh;
+      dr.summary["output_check"] = check_stage_mesh("D-Map", md, bounds, &mi->mesh, true).to_json();
       result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
     }
 
@@ -267,11 +281,13 @@ class DtslPipeline final : public Reconstructor {
     // B-Evl: sharp features (paper §4), filter widths from the marching step.
     TriangleMesh ms = md;
     if (options_.sharpen) {
+      context.stage_started("B-Evl", "recovering sharp features");
       clock.restart();
       sharpen::BilateralEvolutionOptions b = options_.bilateral;
       b.delta = step;
       sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
       ms = br.mesh;
+      br.summary["output_check"] = check_stage_mesh("B-Evl", ms, bounds, &md, true).to_json();
       result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary, std::nullopt});
     }
     result.mesh = ms;

@@ -1,8 +1,8 @@
-// `distance_balloon` (ours, DESIGN.md §1 asks for a third velocity that reaches into concavities):
+// `distance_balloon` (ours, docs/design.md §1 asks for a third velocity that reaches into concavities):
 //
 //     v = -d (grad d . n + beta) - lambda d kappa ,   0 <= beta < 1 .
 //
-// Why this form (DESIGN.md §1's two lessons):
+// Why this form (docs/design.md §1's two lessons):
 //  - It vanishes on the data (every term has the factor d), so the surface comes to rest there
 //    instead of jittering like `geodesic` or shrinking on like `distance`.
 //  - It is fast far away: facing the data from outside, grad d . n is about 1 and v = -(1 + beta) d,
@@ -21,6 +21,8 @@
 // dt <= 1 / (1 + beta): EvolutionOptions::max_time_step caps dt accordingly.
 #include "algorithms/evolution/velocities/velocities.hpp"
 
+#include <algorithm>
+
 namespace dtsl {
 
 namespace {
@@ -28,12 +30,16 @@ namespace {
 struct DistanceBalloonOptions final : Options {
   double beta = 0.2;
   double lambda = 0.01;
+  bool open_membranes = true;
 
   void visit(FieldVisitor& v) override {
     v.field("beta", beta,
             "balloon weight in [0, 1): v = -d (grad d . n + beta) - lambda d kappa; pushes into concavities "
             "where grad d . n ~ 0, and the surface sags about beta x half the sample spacing between samples");
     v.field("lambda", lambda, "weight of the curvature term (frame units per unit curvature), scaled by d");
+    v.field("open_membranes", open_membranes,
+            "where the zero set spans empty space (support.hpp), move inward at the far-field speed "
+            "(1 + beta) d instead");
   }
   void check() const override {
     check_range("beta", beta, 0.0, 0.95);
@@ -44,8 +50,11 @@ struct DistanceBalloonOptions final : Options {
 class DistanceBalloonVelocity final : public VelocityWith<DistanceBalloonOptions, DistanceBalloonVelocity> {
  public:
   double speed(const VelocitySample& s) const override {
-    return -s.distance * (s.distance_gradient.dot(s.normal) + options_.beta + options_.lambda * s.curvature);
+    const double v = -s.distance * (s.distance_gradient.dot(s.normal) + options_.beta + options_.lambda * s.curvature);
+    // Spanning empty space (support.hpp): the far-field speed, as if facing data.
+    return s.unsupported ? std::min(v, -(1.0 + options_.beta) * s.distance) : v;
   }
+  bool wants_support() const override { return options_.open_membranes; }
 };
 
 }  // namespace
