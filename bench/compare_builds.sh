@@ -1,5 +1,5 @@
 #!/bin/bash
-# A/B timing of two dtsl builds (issue 7): `dtsl reconstruct` of the same point files with each binary,
+# A/B timing of two dtsl builds (docs/performance.md): `dtsl reconstruct` of the same point files with each binary,
 # alternating OLD and NEW so that the machine's drift hits both, REPEAT times; prints every wall time,
 # each binary's mean per file, and whether the two wrote byte-identical meshes (a speed-up that should
 # not change results must say "identical").

@@ -1,10 +1,10 @@
-// Phase-1 benchmark (issue 3; not a test): the level-set stage on fandisk cut by a plane (~6k scan
+// Phase-1 benchmark (not a test; docs/performance.md): the level-set stage on fandisk cut by a plane (~6k scan
 // vertices) and the bunny subsampled to 6k points, per solver: wall time, iterations, where the time
 // goes, distances reached. Also times the solvers alone on one evolution step's least-squares system.
 //
 //   phase1_bench [--repeat N] [--solvers a,b,...] [--datasets fandisk,bunny] [--set key=value ...]
 //
-// Needs the libcgal-demo models in the data cache (scripts/fetch_data.sh; DESIGN.md §7). Times are
+// Needs the libcgal-demo models in the data cache (scripts/fetch_data.sh; docs/design.md §7). Times are
 // the best of N repeats (the machine is shared). Output: one JSON object per line.
 #include <algorithm>
 #include <iostream>

@@ -1,5 +1,5 @@
 // Triangles per second of every polygonizer on Phase-1 level sets of fandisk cut by a plane and the 6k
-// bunny (issue 4's benchmark). Not a test:  build/bench/polygonize_bench [repeats]
+// bunny (docs/performance.md). Not a test:  build/bench/polygonize_bench [repeats]
 // Prints one JSON line per (dataset, polygonizer, step): best wall time of `repeats` runs.
 #include <yaml-cpp/yaml.h>
 

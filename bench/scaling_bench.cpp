@@ -1,4 +1,4 @@
-// Scaling benchmark (issue 7; a command, not a test): the full `dtsl` pipeline against `pcl_poisson`
+// Scaling benchmark (a command, not a test; docs/performance.md): the full `dtsl` pipeline against `pcl_poisson`
 // (depth 8, ground-truth normals, so Poisson's time is a lower bound) on the same inputs — the paper-size
 // inputs (fandisk cut, the holed 6k bunny, the 25k armadillo with noise and holes) and area samples of
 // armadillo with noise at the sizes asked for — best of --repeat runs, each in a forked child so that

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Downloads the real models of DESIGN.md §7 — Debian's libcgal-demo data (data/meshes/*.off: fandisk,
+# Downloads the real models of docs/design.md §7 — Debian's libcgal-demo data (data/meshes/*.off: fandisk,
 # bunny00, armadillo, knot, elephant-with-holes, blade, ...; data/points_3/*) — into the dtsl data cache:
 #
 #   ${DTSL_DATA_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/dtsl}/cgal-demo/data/{meshes,points_3}

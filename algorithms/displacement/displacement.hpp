@@ -1,4 +1,4 @@
-// Phase 2: the displaced mesh M = M_0 + D (paper §3.2, Eq. 1-2; DESIGN.md §3). The data's signed
+// Phase 2: the displaced mesh M = M_0 + D (paper §3.2, Eq. 1-2; docs/design.md §3). The data's signed
 // displacements d_k at their foot points q_k (projection.hpp) are Gaussian-filtered onto the vertices,
 // holes get a harmonic fill, and every vertex moves along the implicit normal: v <- v + d(v) n(v),
 // n = grad f / |grad f| (paper: "the normals n are computed from the implicitly defined T-spline surface
@@ -23,9 +23,9 @@ namespace dtsl {
 
 struct DisplacementOptions final : Options {
   /// Gaussian filter width (frame units); 0 = sigma_factor x the base mesh's mean edge length (~ the
-  /// marching step delta, DESIGN.md §3). Wider smooths noise more and small features more.
+  /// marching step delta, docs/design.md §3). Wider smooths noise more and small features more.
   double sigma = 0.0;
-  /// sigma = sigma_factor x mean edge length when sigma is 0. 0.5 (ours; DESIGN.md suggests ~1): with
+  /// sigma = sigma_factor x mean edge length when sigma is 0. 0.5 (ours; docs/design.md suggests ~1): with
   /// the residual passes, measured on fandisk cut by a plane, e_avr of MD 2.7e-3 at 1.0, 0.88e-3 at 0.5.
   double sigma_factor = 0.5;
   /// Foot points farther than this x sigma from a vertex are ignored (the Gaussian is ~1% there at 3).
@@ -47,9 +47,9 @@ struct DisplacementOptions final : Options {
   /// (a vertex with one to three feet can have its centroid anywhere, but only one beside a hole is
   /// tested). A vertex on a straight rim of even data has its centroid about sqrt(2/pi) ~ 0.8 x the
   /// width away, one inside the data less: 0.8 takes the vertices beyond the data's edge (one on the
-  /// edge is borderline). configs/ablation_hole_rim.yaml. Default 0.8 since session 24: with the fine
-  /// residual passes and rim_min_hole_vertices 20 it lowers chamfer without most of the e_max it cost
-  /// before (bunny 1.85 -> 1.59e-3, e_max 11.4 -> 8.8; fandisk 7.44 -> 6.26, e_max 9.6 -> 10.0). It
+  /// edge is borderline). configs/ablation_hole_rim.yaml. Default 0.8: with the fine residual passes
+  /// and rim_min_hole_vertices 20 it lowers chamfer and costs little e_max (against rim 0: bunny 1.85 ->
+  /// 1.59e-3, e_max 11.4 -> 8.8; fandisk 7.44 -> 6.26, e_max 9.6 -> 10.0, at bilateral_patience 1). It
   /// applies to noisy data too (the fine passes do not): diplodocus 0.96 -> 0.87, e_max 7.2 -> 7.9;
   /// armadillo 1.34, e_max 15.8 -> 10.8 (configs/method.yaml, configs/paper_table1.yaml).
   double rim_offset = 0.8;

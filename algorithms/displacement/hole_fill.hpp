@@ -1,5 +1,5 @@
 // Displacement values for vertices with no data near them (holes): a harmonic fill over the mesh graph
-// (DESIGN.md §3, *ours*; the paper's Gaussian filter leaves such vertices undefined). The filled values
+// (docs/design.md §3, *ours*; the paper's Gaussian filter leaves such vertices undefined). The filled values
 // interpolate the known ones at the hole's rim, so the displaced surface spans the hole without a step
 // or a crease where data ends, instead of dropping back to the base surface (d = 0).
 #pragma once

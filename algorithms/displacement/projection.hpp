@@ -1,4 +1,4 @@
-// Phase 2, step 1: projection of the data onto the initial mesh M_0 (paper §3.1, steps 1-4; DESIGN.md §3).
+// Phase 2, step 1: projection of the data onto the initial mesh M_0 (paper §3.1, steps 1-4; docs/design.md §3).
 // Each data point p_k gets its Newton foot point q_k on f = 0 (reusing the polygonizers' newton_project),
 // the signed displacement d_k = sign(f(p_k)) |p_k - q_k|, and the closest triangle(s) of M_0 to q_k found
 // through the one-ring of the closest vertex: no ray casting (paper §3.1, "we do not compute any

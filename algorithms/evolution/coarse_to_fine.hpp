@@ -1,4 +1,4 @@
-// Coarse-to-fine evolution (ours, after [55]'s adaptive refinement; DESIGN.md §1 "the T-mesh's adaptive
+// Coarse-to-fine evolution (ours, after [55]'s adaptive refinement; docs/design.md §1 "the T-mesh's adaptive
 // refinement ... not optional"). The evolution runs first on the data-adaptive T-mesh, which is
 // coarse (points_per_cell keeps n_t near the paper's ~1000-2500) and therefore fast, and captures the
 // topology and outline. A coarse T-mesh cannot bend into thin parts and narrow concavities (a fin of

@@ -1,5 +1,5 @@
 // How far the data are from the level set, as the evolution's stopping rule and history read it
-// (DESIGN.md §1: "stop when ... the mean data-to-level-set distance stops decreasing").
+// (docs/design.md §1: "stop when ... the mean data-to-level-set distance stops decreasing").
 //
 // First-order distance |f(p)| / |grad f(p)| per data point: one gradient evaluation, no iteration.
 // With the distance-field constraint holding (|grad f| ~ 1 near the zero set) it is the Newton step

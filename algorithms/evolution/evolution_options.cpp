@@ -109,13 +109,13 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (its options: solver_*); "
           "default eigen_cg: warm-started from the last c' it was the fastest in bench/phase1_bench.cpp");
   v.field("w_distance", w_distance,
-          "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (DESIGN.md: 1; 0.1 fits the data ~2x "
+          "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data ~2x "
           "closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus: measured)");
-  v.field("w_smooth", w_smooth, "weight w_S of the smoothness term c'^T R c' (DESIGN.md: 1e-3)");
+  v.field("w_smooth", w_smooth, "weight w_S of the smoothness term c'^T R c' (docs/design.md: 1e-3)");
   v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (graph Laplacian of the T-mesh edges)");
-  v.field("cfl", cfl, "CFL factor: a step moves the zero set by at most cfl x the cell size (DESIGN.md: 0.5)");
+  v.field("cfl", cfl, "CFL factor: a step moves the zero set by at most cfl x the cell size (docs/design.md: 0.5)");
   v.field("cfl_cell", cfl_cell,
-          "cell size of the CFL rule: 'finest' (dt = cfl h_min / max|v|, DESIGN.md) or 'local' "
+          "cell size of the CFL rule: 'finest' (dt = cfl h_min / max|v|, docs/design.md) or 'local' "
           "(dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j: big steps through coarse empty space)");
   v.field("max_time_step", max_time_step,
           "cap on dt (pseudo-time); velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate");
@@ -130,7 +130,7 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "bumps grow between the samples)");
   v.field("band_subdivision", band_subdivision, "distance-field band samples y_m: centres of b^3 sub-cells of every leaf");
   v.field("band_width", band_width,
-          "distance-field band: |f| / |grad f| < band_width x the leaf side (DESIGN.md: 2 h_min)");
+          "distance-field band: |f| / |grad f| < band_width x the leaf side (docs/design.md: 2 h_min)");
   v.field("curvature_clamp", curvature_clamp,
           "|kappa| is capped at curvature_clamp / leaf side: the T-mesh cannot carry finer curvature, and "
           "near a critical point of f kappa blows up");
@@ -138,7 +138,7 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "no nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign and stays at "
           "least this fraction of its cell size from zero; 0 disables");
   v.field("initial_radius_factor", initial_radius_factor,
-          "initial sphere radius = this x the largest distance of a point from the bbox centre (DESIGN.md: 1.1)");
+          "initial sphere radius = this x the largest distance of a point from the bbox centre (docs/design.md: 1.1)");
   v.field("initial_box_margin", initial_box_margin,
           "the initial sphere is clipped to the data's box grown by this on every side, so that it starts "
           "inside the T-mesh's domain (ours; <= 0: the sphere alone)");

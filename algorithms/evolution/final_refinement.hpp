@@ -1,4 +1,4 @@
-// The final refinement of the level set ([55], DESIGN.md §1 end; paper §2.1: "that paper also
+// The final refinement of the level set ([55], docs/design.md §1 end; paper §2.1: "that paper also
 // discusses a 'final refinement' step, which can be used to improve the result, especially for noisy
 // data", and §3.2: "find a better base surface by using more degrees of freedom ... and applying the
 // 'final refinement' step"):

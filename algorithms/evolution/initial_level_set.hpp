@@ -1,4 +1,4 @@
-// The initial level set of the evolution (DESIGN.md §1): f_0 = signed distance to a sphere enclosing
+// The initial level set of the evolution (docs/design.md §1): f_0 = signed distance to a sphere enclosing
 // every data point — centre at the data's bounding-box centre, radius radius_factor (1.1) x the
 // largest distance from that centre to a point — put into coefficients by quasi-interpolation
 // (c_i = f_0 at the Greville point of B_i).
@@ -16,7 +16,7 @@
 // box_margin, where the rounding sphere is centred on that point) for the least rounding that still
 // quasi-interpolates well. For data
 // that already fit in the sphere inside the box, nothing changes. box_margin <= 0 disables the
-// clipping (the DESIGN.md sphere alone). Limitation: where the T-mesh near the box's faces is coarser
+// clipping (the docs/design.md sphere alone). Limitation: where the T-mesh near the box's faces is coarser
 // than about 2 (margin - box_margin) (cells of 0.31 at level 3 against a gap of 0.15), the
 // quasi-interpolant blurs the box across the domain's faces and the initial zero set may still touch
 // them there; the evolution peels it off as it moves in.
@@ -40,7 +40,7 @@ struct EnclosingSurface {
   double operator()(const Vec3& x) const;
 };
 
-/// The sphere of DESIGN.md §1, clipped to the data's box grown by box_margin when box_margin > 0. The
+/// The sphere of docs/design.md §1, clipped to the data's box grown by box_margin when box_margin > 0. The
 /// clip box is at least 2 min_half_extent wide along every axis (centred on the data), so flat data
 /// (a plate, a plane) still start inside a slab the T-mesh can represent: a slab thinner than a
 /// cell quasi-interpolates to a function without a zero set. AlgorithmError for no points or

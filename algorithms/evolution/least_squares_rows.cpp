@@ -198,8 +198,8 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     const long begin = n * t / threads, end = n * (t + 1) / threads;
     Block& b = blocks[t];
     ActiveBasis active;
-    // Reserved up front: growing these by doubling was part of the ~8 % memmove of a single-threaded
-    // reconstruction's profile (issue 7; 1 % after, with the allocator's top pad). A cubic
+    // Reserved up front: growing these by doubling is ~8 % memmove in a single-threaded reconstruction's
+    // profile (1 % reserved, with the allocator's top pad). A cubic
     // T-spline has 64 active functions at a generic point, more near T-junctions (53-70 per row, mean,
     // in fandisk's evolution steps).
     b.count.reserve(end - begin);

@@ -1,5 +1,5 @@
 // The linear least-squares problems of the level-set stage, as weighted rows over T-spline
-// coefficients (DESIGN.md §1):
+// coefficients (docs/design.md §1):
 //
 //   evolution step, unknowns c' (the time derivative of the coefficients):
 //     value rows     f'(x_j) = -v(x_j) |grad f(x_j)|                              (follow the velocity)
@@ -12,7 +12,7 @@
 //
 // where f' = sum_i c'_i R_i with R_i = B_i / sum_j B_j (TSplineBasis::active). Every kind of row is
 // weighted by (its weight) / (number of rows of that kind), so the balance between the terms does not
-// depend on how densely each is sampled (DESIGN.md §1). The smoothness term is stored as rows too
+// depend on how densely each is sampled (docs/design.md §1). The smoothness term is stored as rows too
 // (R = I: one row per unknown; first-order: one row c'_a - c'_b per T-mesh edge), so that every
 // solver — normal equations or Ceres — sees one uniform problem.
 //
@@ -31,7 +31,7 @@
 
 namespace dtsl {
 
-/// R in w_S c'^T R c' (DESIGN.md §1: "a thin-plate or first-order smoothness matrix ... (ours)").
+/// R in w_S c'^T R c' (docs/design.md §1: "a thin-plate or first-order smoothness matrix ... (ours)").
 enum class Smoothness {
   tikhonov,     ///< R = I: small updates
   first_order,  ///< R = the graph Laplacian of the T-mesh edges: neighbouring control points move alike

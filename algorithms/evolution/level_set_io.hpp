@@ -1,4 +1,4 @@
-// Writing out the level-set stage (issue 3, item 3; DESIGN.md §6: "every stage's output can be written
+// Writing out the level-set stage (docs/design.md §6: "every stage's output can be written
 // out and pictured"): the level set through tspline_io (re-loadable bit-identically), the summary and
 // per-iteration history as JSON, and the T-mesh as line geometry for figures (the paper's Fig. 1a).
 #pragma once

@@ -1,5 +1,5 @@
 // Moving a level set onto a refined T-mesh (the final refinement and the coarse-to-fine evolution,
-// DESIGN.md §1). Control points whose knot vectors did not change keep their coefficient (f is
+// docs/design.md §1). Control points whose knot vectors did not change keep their coefficient (f is
 // unchanged where only they are active); the new or changed ones get either
 //  - `quasi_interpolation` (the options' default): the old f at their Greville point, O(h^2) in the
 //    old cell size h; or
@@ -11,7 +11,7 @@
 // noisy diplodocus's mean data distance 4.73e-3 -> 7.81e-3 by the transfer alone, 4.74e-3 with least
 // squares), which the fit after it then has to undo. It does, about as well from either start, so the
 // final meshes barely differ; in the coarse-to-fine round the least-squares start made fandisk and the
-// holed bunny worse (configs/ablation_transfer.yaml, README).
+// holed bunny worse (configs/ablation_transfer.yaml, docs/experiments.md).
 // Either way f changes only where knots changed.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The normal equations A^T W A u = A^T W b of a LeastSquaresSystem, for the solvers that factorise or
-// iterate on them (`eigen_ldlt`, `eigen_cg`). Sparse and symmetric positive definite (DESIGN.md §1)
+// iterate on them (`eigen_ldlt`, `eigen_cg`). Sparse and symmetric positive definite (docs/design.md §1)
 // as long as every unknown has a smoothness row or enough other rows.
 #pragma once
 

@@ -2,7 +2,7 @@
 // front. A level-set PDE moves the zero set continuously; it never makes a bubble appear where the
 // surface is not. The least-squares step can: the distance-field rows of the band pull on controls
 // whose support does not reach the zero set, and where the band meets the far field that was left
-// behind by the front (DESIGN.md §1 fixes c' only near the surface), f develops a ridge and a valley
+// behind by the front (docs/design.md §1 fixes c' only near the surface), f develops a ridge and a valley
 // that can dip through zero — measured as 5-20 spurious bubbles on the two-sphere test without this
 // guard.
 //

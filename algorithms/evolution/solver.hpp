@@ -1,4 +1,4 @@
-// Solvers of the level-set stage's least-squares problems (DESIGN.md §1: "Solvers (plugins):
+// Solvers of the level-set stage's least-squares problems (docs/design.md §1: "Solvers (plugins):
 // eigen_ldlt (direct sparse Cholesky on the normal equations), eigen_cg (conjugate gradients
 // warm-started from the last c'), and ceres (the same residuals as a Ceres problem)").
 //

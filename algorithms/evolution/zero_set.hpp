@@ -1,4 +1,4 @@
-// Where the evolution looks at the level set each step (DESIGN.md §1): points x_j on the current zero
+// Where the evolution looks at the level set each step (docs/design.md §1): points x_j on the current zero
 // set, where the velocity rows are written, and points y_m of a band around it, where the
 // distance-field rows keep |grad f| near 1.
 //
@@ -11,7 +11,7 @@
 // tests at s = 1, none at s = 2). Nothing about the number of components or the genus is assumed:
 // every leaf is looked at, every step.
 // y_m: the centres of the b^3 sub-cells (b = 1: the leaf centres) where |f| / |grad f| < band_width x
-// (the side of their leaf), plus the x_j. DESIGN.md §1 writes the band as |f| < 2 h_min; on an adaptive T-mesh a band of the finest cell
+// (the side of their leaf), plus the x_j. docs/design.md §1 writes the band as |f| < 2 h_min; on an adaptive T-mesh a band of the finest cell
 // size would hold no cell centre at all where the T-mesh is coarse, so the band is measured in the
 // local cell size (ours).
 #pragma once

@@ -1,4 +1,4 @@
-// The final refinement may not complicate the topology the evolution found (ours; DESIGN.md §1 leaves
+// The final refinement may not complicate the topology the evolution found (ours; docs/design.md §1 leaves
 // the final refinement's safeguards open). The evolution decides the topology: it moves the zero set
 // continuously, pinching necks and opening holes where the data ask for it. The final refinement is a
 // direct fit (final_refinement.hpp): where a part is thinner than about two cells of the refined

@@ -15,7 +15,7 @@
 namespace dtsl {
 
 MeshQuality mesh_quality(const TriangleMesh& mesh) {
-  // Same definitions as the metrics module's mesh_stats (DESIGN.md §5): every face's smallest angle
+  // Same definitions as the metrics module's mesh_stats (docs/design.md §5): every face's smallest angle
   // (0 for a degenerate one), the nearest-rank 1st percentile, valence = number of distinct edges.
   MeshQuality q;
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -1,5 +1,5 @@
 // Polygonizers: plugins that turn the zero level set of an implicit function into a triangle mesh (the
-// paper's initial mesh M_0, §2.2; DESIGN.md §2). Every polygonizer
+// paper's initial mesh M_0, §2.2; docs/design.md §2). Every polygonizer
 //  - triangulates each component of {f = 0} that carries data (a seed hint near it) and none twice,
 //  - returns a closed, edge-manifold mesh for a closed level set (a level set that leaves f's domain
 //    is cut open there, and the summary says so),
@@ -20,7 +20,7 @@
 namespace dtsl {
 
 /// Triangle-quality numbers of a polygonizer's output. They are a diagnostic of the stage; tables
-/// use the metrics module's mesh_stats (one definition, DESIGN.md §5), which agrees on these fields.
+/// use the metrics module's mesh_stats (one definition, docs/design.md §5), which agrees on these fields.
 struct MeshQuality {
   double min_angle_deg = 0.0;       ///< smallest triangle angle in the mesh
   double min_angle_p01_deg = 0.0;   ///< 1st percentile (nearest rank) of the triangles' smallest angles

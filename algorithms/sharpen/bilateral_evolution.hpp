@@ -1,4 +1,4 @@
-// Phase 3 of the method (paper §4, DESIGN.md §4): the data-driven bilateral evolution that recovers
+// Phase 3 of the method (paper §4, docs/design.md §4): the data-driven bilateral evolution that recovers
 // sharp features of the displaced mesh.
 //
 // Each iteration: foot points q_k of all data on the current mesh (Fig. 2 cases, Eq. 6); minimise

@@ -1,5 +1,5 @@
 // Degenerate-triangle removal after the bilateral evolution (paper §4.3: sharp vertices gather on the
-// sharp edges and leave needles behind; the paper applies MeshSlicing [7], DESIGN.md §4 allows a
+// sharp edges and leave needles behind; the paper applies MeshSlicing [7], docs/design.md §4 allows a
 // library's removal). We collapse every edge shorter than a fraction of the mean edge length with CGAL's
 // Euler::collapse_edge, only where the link condition holds (the mesh stays closed and 2-manifold) and
 // no surviving triangle around the merged vertex would flip or become degenerate. The merged vertex

@@ -1,5 +1,5 @@
 // The univariate cubic B-spline on five simple knots: the factor of every T-spline blending function
-// (DESIGN.md §1: B_i(x) = N[u_i](x) N[v_i](y) N[w_i](z)). Stored as its four polynomial pieces so that
+// (docs/design.md §1: B_i(x) = N[u_i](x) N[v_i](y) N[w_i](z)). Stored as its four polynomial pieces so that
 // evaluating value, first and second derivative is one interval search and three Horner schemes —
 // the inner loop of every T-spline evaluation.
 #pragma once
@@ -66,7 +66,7 @@ class CubicBSpline {
 
   const KnotValues& knots() const { return t_; }
 
-  /// The Greville abscissa: the mean of the three inner knots (DESIGN.md §1, quasi-interpolation).
+  /// The Greville abscissa: the mean of the three inner knots (docs/design.md §1, quasi-interpolation).
   double greville() const { return (t_[1] + t_[2] + t_[3]) / 3.0; }
 
   /// N(x), and N'(x) if Order >= 1, and N''(x) if Order >= 2 (the other outputs are left untouched).

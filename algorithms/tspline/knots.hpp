@@ -1,5 +1,5 @@
 // Control points of the T-mesh and their local knot vectors: the 3-D form of Sederberg's T-spline rule
-// (paper §2.1 and its ref. [47]; the rule itself is ours, DESIGN.md §1).
+// (paper §2.1 and its ref. [47]; the rule itself is ours, docs/design.md §1).
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // The T-mesh of the paper's §2.1: an octree over the domain cube, split where the data are dense
 // ("the T-spline control grid (or T-mesh) is generated according to the distribution of data points
-// through the octree subdivision"), 2:1 balanced, with O(1) point location. DESIGN.md §1.
+// through the octree subdivision"), 2:1 balanced, with O(1) point location. docs/design.md §1.
 //
 // Every cell is addressed by integers at the finest level (max_depth): the domain has
 // R = 2^max_depth finest cells per axis, a cell of level l has side 2^(max_depth - l) in those units
@@ -20,19 +20,19 @@ namespace dtsl {
 
 using Int3 = std::array<int, 3>;
 
-/// Which neighbours 2:1 balance constrains: cells sharing a face (DESIGN.md §1), or also those
+/// Which neighbours 2:1 balance constrains: cells sharing a face (docs/design.md §1), or also those
 /// sharing only an edge, or also those sharing only a vertex.
 enum class Balance { face, edge, vertex };
 Balance balance_from_string(const std::string& name);  // ConfigError for an unknown name
 const char* to_string(Balance b);
 
-/// How the T-mesh is made from the data points (DESIGN.md §1).
+/// How the T-mesh is made from the data points (docs/design.md §1).
 ///
 /// Defaults (ours): points_per_cell = 64 puts the control point count in the paper's range (Table 1:
 /// n_t = 870-2550 for 6k-26k points): measured 1347 for 6k points on a sphere, 1446 for 6k and 4765
 /// for 26k points on a torus with 30x density variation; 128 gives 729 / 909 / 2352. min_depth = 3
 /// (cells of 0.31 with the default margin) keeps the empty space the evolving front crosses from
-/// being spanned by a handful of blending functions. Face balance is the DESIGN.md rule; 'vertex'
+/// being spanned by a handful of blending functions. Face balance is the docs/design.md rule; 'vertex'
 /// costs ~10% more control points and makes the T-mesh more regular (fewer distinct knot vectors a
 /// leaf), 'edge' lies between: all three give a C2 rational T-spline with a positive denominator.
 struct TMeshOptions final : Options {
@@ -142,7 +142,7 @@ Octree build_octree(const std::vector<Vec3>& points, const TMeshOptions& options
 Octree uniform_octree(int depth, double margin);
 
 /// Splits the given leaves (leaf numbers of `octree`; those already at max_depth are left alone),
-/// rebalances and returns the new T-mesh (for the final refinement, DESIGN.md §1).
+/// rebalances and returns the new T-mesh (for the final refinement, docs/design.md §1).
 Octree refine_octree(const Octree& octree, const std::vector<int>& leaves_to_split, Balance balance);
 
 /// Rebuilds an octree from its leaves (level and origin in finest-level units), as stored in a file.

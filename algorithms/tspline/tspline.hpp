@@ -1,4 +1,4 @@
-// The rational cubic T-spline f(x) = sum_i c_i B_i(x) / sum_i B_i(x) (DESIGN.md §1; paper §2.1: "the
+// The rational cubic T-spline f(x) = sum_i c_i B_i(x) / sum_i B_i(x) (docs/design.md §1; paper §2.1: "the
 // T-spline function is piecewise rational ... C2 in the absence of multiple knots"): a basis shared by
 // pointer plus one coefficient per control point. This is the level set the evolution moves and the
 // polygonizers, foot-point projection and curvature checks read.
@@ -40,7 +40,7 @@ class TSpline final : public ImplicitFunction {
   std::vector<double> coefficients_;
 };
 
-/// Quasi-interpolation (DESIGN.md §1, initial level set): c_i = g(Greville point of B_i). Exact for
+/// Quasi-interpolation (docs/design.md §1, initial level set): c_i = g(Greville point of B_i). Exact for
 /// linear g on the uniform grid away from the domain boundary; O(h^2) for smooth g.
 std::vector<double> quasi_interpolate(const TSplineBasis& basis, const std::function<double(const Vec3&)>& g);
 

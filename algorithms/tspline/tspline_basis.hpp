@@ -1,6 +1,6 @@
 // The blending functions of the T-spline on a T-mesh, B_i(x) = N[u_i](x) N[v_i](y) N[w_i](z), and
 // their fast evaluation (paper §2.1: "we use an octree to store the information of associated T-spline
-// control coefficients for any point"; DESIGN.md §1). Independent of the coefficients, so one basis
+// control coefficients for any point"; docs/design.md §1). Independent of the coefficients, so one basis
 // serves the level set, its time derivative c' and every least-squares row built on it.
 //
 // Evaluation of a point: O(1) leaf lookup, then only the control points whose support overlaps that
@@ -53,7 +53,7 @@ class TSplineBasis {
   const LocalKnots& knots(int i) const { return knots_[i]; }
   /// The knots of B_i along `axis` in world coordinates.
   KnotValues knot_values(int i, int axis) const;
-  /// The Greville point of B_i: per axis the mean of its three inner knots (DESIGN.md §1).
+  /// The Greville point of B_i: per axis the mean of its three inner knots (docs/design.md §1).
   Vec3 greville(int i) const;
   std::vector<Vec3> greville_points() const;
 

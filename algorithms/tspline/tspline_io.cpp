@@ -83,7 +83,7 @@ void save_tspline(const std::string& path, const TSpline& spline) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << std::setprecision(17);
     out << kMagic << " " << kVersion << "\n";
-    out << "# rational cubic T-spline level set (DESIGN.md §1); lattice units = finest-level cells\n";
+    out << "# rational cubic T-spline level set (docs/design.md §1); lattice units = finest-level cells\n";
     out << "domain " << tree.domain_min().x() << " " << tree.domain_min().y() << " " << tree.domain_min().z()
         << " " << tree.side() << "\n";
     out << "max_depth " << tree.max_depth() << "\n";

@@ -1,4 +1,4 @@
-// Output of the level-set stage (issue 3, item 3): the level set (T-mesh and coefficients) saved and
+// Output of the level-set stage: the level set (T-mesh and coefficients) saved and
 // re-loadable, and the T-mesh as line geometry for figures (the paper's Fig. 1a and 3a).
 #pragma once
 

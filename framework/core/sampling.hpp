@@ -1,5 +1,5 @@
 // Area-uniform sampling of a triangle mesh, shared by the datasets (area sampler) and the metrics
-// (100k samples on result and ground truth, DESIGN.md §5).
+// (100k samples on result and ground truth, docs/design.md §5).
 #pragma once
 
 #include <random>

@@ -1,4 +1,4 @@
-// Datasets (DESIGN.md §7): a shape (synthetic with exact ground truth, a real model from Debian's
+// Datasets (docs/design.md §7): a shape (synthetic with exact ground truth, a real model from Debian's
 // libcgal-demo data, or a file), a sampler that turns it into points, and corruptions applied in
 // order, each a plugin with options and a seed. Shape and ground truth are first normalised into
 // [-1,1]^3, so every length parameter (noise sigma, hole radius) is in the paper's frame; after

@@ -1,5 +1,5 @@
 // Shapes read from files: the real models of Debian's libcgal-demo data (fetched into a cache by
-// scripts/fetch_data.sh, DESIGN.md §7) and arbitrary point / mesh files.
+// scripts/fetch_data.sh, docs/design.md §7) and arbitrary point / mesh files.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Combinatorial and quality statistics of a triangle mesh (DESIGN.md §5, "Mesh").
+// Combinatorial and quality statistics of a triangle mesh (docs/design.md §5, "Mesh").
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The metrics of DESIGN.md §5, one definition shared by every table. Distances are exact point-triangle
+// The metrics of docs/design.md §5, one definition shared by every table. Distances are exact point-triangle
 // distances through an AABB tree (CGAL), never nearest-sample distances.
 #pragma once
 

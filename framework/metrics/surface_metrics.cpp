@@ -1,4 +1,4 @@
-// Result against ground truth (DESIGN.md §5): area-uniform samples on both surfaces, exact distances
+// Result against ground truth (docs/design.md §5): area-uniform samples on both surfaces, exact distances
 // from each sample set to the other surface, and the scores built from them.
 #include <cmath>
 #include <random>

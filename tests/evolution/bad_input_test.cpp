@@ -1,4 +1,4 @@
-// Bad input to the level-set stage (issue 3): a clear error or a documented, tested result — never a
+// Bad input to the level-set stage: a clear error or a documented, tested result — never a
 // hang or a crash.
 #include <catch2/catch.hpp>
 

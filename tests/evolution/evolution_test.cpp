@@ -1,7 +1,7 @@
-// The level-set stage on shapes with known answers (issue 3): a sphere is reached within a stated
+// The level-set stage on shapes with known answers: a sphere is reached within a stated
 // tolerance, a torus sampled with 6x density variation changes the level set from genus 0 to genus 1
 // by itself, two separate spheres end as two components, |grad f| stays near 1 on the zero set. For
-// every registered velocity x solver pair where the suite's time allows (DESIGN.md: a loaded 2-core
+// every registered velocity x solver pair where the suite's time allows (docs/design.md: a loaded 2-core
 // machine; T-meshes of depth 4, ~2000 points).
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// The final refinement ([55], DESIGN.md §1): refines where the surface meets the data, keeps f where
+// The final refinement ([55], docs/design.md §1): refines where the surface meets the data, keeps f where
 // the T-mesh did not change, brings the level set closer to the data; callable again with focus points
 // (Phase 2, where displacement flips triangles).
 #include <catch2/catch.hpp>

@@ -23,7 +23,7 @@
 
 namespace dtsl::test {
 
-/// Points of a dataset spec (YAML, DESIGN.md §7 syntax), in the [-1,1]^3 frame.
+/// Points of a dataset spec (YAML, docs/design.md §7 syntax), in the [-1,1]^3 frame.
 inline std::vector<Vec3> dataset_points(const std::string& yaml, std::uint64_t seed = 1) {
   register_dataset_plugins();
   DatasetSpec spec = parse_dataset(YAML::Load(yaml), "test");

@@ -1,4 +1,4 @@
-// The initial level set (DESIGN.md §1, clipped as initial_level_set.hpp explains) and the
+// The initial level set (docs/design.md §1, clipped as initial_level_set.hpp explains) and the
 // no-nucleation guard (sign_guard.hpp).
 #include <catch2/catch.hpp>
 
@@ -49,7 +49,7 @@ TEST_CASE("initial level set: encloses every point, starts inside the domain, ge
       CHECK(s.components == 1);
       // Data filling their box up to the corners on a T-mesh of 0.31 cells (this cube's octree stays at
       // level 3): the box 0.1 outside the data is blurred by half a cell and the zero set may touch the
-      // domain's faces (as the unclipped DESIGN.md sphere always does there). Otherwise it is closed.
+      // domain's faces (as the unclipped docs/design.md sphere always does there). Otherwise it is closed.
       if (std::string(name) != "cube surface, corners included") {
         CHECK(s.watertight);
         CHECK(s.genus == 0.0);

@@ -1,4 +1,4 @@
-// The stage's output (issue 3, item 3): saved, re-loaded bit-identically, with its history as JSON and
+// The stage's output: saved, re-loaded bit-identically, with its history as JSON and
 // the T-mesh as line geometry; and EvolutionOptions as a flat, prefixed options struct.
 #include <catch2/catch.hpp>
 

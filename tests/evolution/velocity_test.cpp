@@ -1,4 +1,4 @@
-// The velocity plugins (DESIGN.md §1): registered with options and checks, the sign conventions of
+// The velocity plugins (docs/design.md §1): registered with options and checks, the sign conventions of
 // each formula on hand-made samples, and the curvature kappa = div n from a gradient and Hessian.
 #include <catch2/catch.hpp>
 

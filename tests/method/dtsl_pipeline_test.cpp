@@ -1,4 +1,4 @@
-// The whole method as the registered pipeline `dtsl` (issue 5 item 4): on a noisy sphere and on the
+// The whole method as the registered pipeline `dtsl`: on a noisy sphere and on the
 // CAD-like block (sharp edges, a through-hole), every phase runs and records its stage, displacement
 // lowers the error of the initial mesh, the bilateral evolution does not raise it, and the result is
 // closed with the truth's topology. Properties, not pasted numbers.

@@ -175,7 +175,7 @@ class PolynomialDoubleTorus final : public AnalyticImplicit {
 };
 
 /// A Phase-1-like level set: the uniform tensor-product cubic B-spline (the full-octree special case
-/// of the T-spline, DESIGN.md §1) quasi-interpolating another shape's function on a grid of spacing h
+/// of the T-spline, docs/design.md §1) quasi-interpolating another shape's function on a grid of spacing h
 /// (c_ijk = g(node), O(h^2) off g). Piecewise polynomial and C2, with |grad f| != 1 away from the
 /// source's zero set: what the polygonizers will see from the evolution, without linking it.
 class BSplineLevelSet final : public AnalyticImplicit {

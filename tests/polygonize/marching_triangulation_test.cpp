@@ -54,7 +54,7 @@ TEST_CASE("marching triangulation is semi-regular with vertices on the surface",
         worst = std::max(worst, std::abs(shape->evaluate(v, &g)) / g.norm());
       }
       CHECK(worst < options.newton_tolerance);
-      // The paper's semi-regularity claim, as DESIGN.md §2 and issue 4 quantify it.
+      // The paper's semi-regularity claim (docs/design.md §2: most vertices of valence 6), quantified.
       CHECK(st.valence6_fraction >= 0.70);
       CHECK(st.min_angle_p01_deg > 25.0);
       // The step sets the edge length.

@@ -1,4 +1,4 @@
-// Properties every registered polygonizer must have (DESIGN.md §2): on closed analytic level sets of
+// Properties every registered polygonizer must have (docs/design.md §2): on closed analytic level sets of
 // genus 0, 1 and 2 and with two components, a closed edge-manifold mesh without self-intersections,
 // of the right topology, within a distance of the true surface that shrinks with the step, with
 // vertex normals from grad f; data decide which components are meshed, each once.

@@ -1,4 +1,4 @@
-// Phase 3 on the CAD-like block (issue 5 item 3): starting from a mesh that fits the data except along
+// Phase 3 on the CAD-like block: starting from a mesh that fits the data except along
 // the rounded sharp edges (what a displaced mesh looks like), the bilateral evolution must halve e_avr,
 // bring the mesh onto the true edge lines, move only vertices near those edges, flip no triangle, and
 // keep the mesh closed, manifold and of genus 1.

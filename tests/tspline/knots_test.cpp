@@ -1,4 +1,4 @@
-// Control points and local knot vectors: the ray-casting rule of DESIGN.md §1 checked against a
+// Control points and local knot vectors: the ray-casting rule of docs/design.md §1 checked against a
 // brute-force reading of the rule over all leaves, and its consequences on the uniform grid.
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // Synthetic point sets with known surfaces for the T-spline tests: uniform and strongly non-uniform
-// samples, all inside [-1,1]^3 (the normalised frame of DESIGN.md).
+// samples, all inside [-1,1]^3 (the normalised frame of docs/design.md).
 #pragma once
 
 #include <cmath>

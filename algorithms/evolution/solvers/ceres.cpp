@@ -1,4 +1,4 @@
-// `ceres`: the same weighted rows as a Ceres problem (DESIGN.md §1, "the same residuals as a Ceres
+// `ceres`: the same weighted rows as a Ceres problem (docs/design.md §1, "the same residuals as a Ceres
 // problem"): one parameter block per unknown coefficient, one residual block per row,
 // residual_r = sqrt(w_r) (a_r . u - b_r). The problem is linear, so the trust-region solver is run
 // with a huge initial radius (Levenberg–Marquardt damping 1e-16): its first step is the Gauss–Newton

@@ -1,4 +1,4 @@
-// `cholmod` (ours, a fourth solver beside DESIGN.md's three): the same normal equations as eigen_ldlt,
+// `cholmod` (ours, a fourth solver beside docs/design.md's three): the same normal equations as eigen_ldlt,
 // formed and factorised by SuiteSparse's supernodal CHOLMOD, which does the dense-block work of the
 // factor with BLAS. The normal equations of a cubic T-spline couple every control point with its 7^3 neighbours,
 // so their Cholesky factor is dense in blocks and a supernodal factorisation is several times faster

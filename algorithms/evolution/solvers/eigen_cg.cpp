@@ -1,5 +1,5 @@
 // `eigen_cg`: conjugate gradients on the normal equations, warm-started from the caller's guess (the
-// evolution passes the previous step's c', DESIGN.md §1), with a Jacobi or incomplete-Cholesky
+// evolution passes the previous step's c', docs/design.md §1), with a Jacobi or incomplete-Cholesky
 // preconditioner. CG that misses its tolerance within max_iterations either falls back, documented
 // and tested, to the direct eigen_ldlt factorisation of the same normal equations (on_failure =
 // eigen_ldlt, the default; the report says fell_back, solver = "eigen_ldlt"), or throws (on_failure =
@@ -19,7 +19,7 @@ struct EigenCgOptions final : Options {
   // Five digits. Looser solves are cheaper (a warm-started CG reaches 1e-3 in ~70 iterations where
   // 1e-6 takes 130-1400) but unstable at scale: on 100k armadillo points 1e-3 and 1e-4 let errors in
   // weakly determined coefficients grow step by step into hundreds of spurious handles, 1e-5 evolves as
-  // 1e-6 does at half the solve time (configs/ablation_solver_tolerance.yaml; issue 7's note).
+  // 1e-6 does at half the solve time (configs/ablation_solver_tolerance.yaml; docs/performance.md).
   double tolerance = 1e-5;
   int max_iterations = 2000;
   std::string preconditioner = "jacobi";
@@ -49,7 +49,7 @@ class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
     SolveReport report;
     report.solver = "eigen_cg";
     const NormalEquations normal = normal_equations(system);
-    const double forming_seconds = clock.seconds();  // where the time goes (issue 7): forming vs iterating
+    const double forming_seconds = clock.seconds();  // where the time goes: forming vs iterating
     if (solution.size() != system.unknowns || !solution.allFinite()) solution = Eigen::VectorXd::Zero(system.unknowns);
     double cg_error = 0.0;
     bool converged = false;

@@ -1,5 +1,5 @@
 // `eigen_ldlt`: the normal equations A^T W A u = A^T W b factorised by Eigen's SimplicialLDLT with an
-// AMD ordering (DESIGN.md §1, "direct sparse Cholesky on the normal equations"). The symbolic analysis
+// AMD ordering (docs/design.md §1, "direct sparse Cholesky on the normal equations"). The symbolic analysis
 // is kept and reused while the sparsity pattern stays the same (it usually changes with the zero set,
 // so this only helps repeated solves on one set of rows, e.g. the final refinement's Gauss-Newton steps
 // when the band does not move).

@@ -1,4 +1,4 @@
-// `distance`: v = -d(x) - lambda kappa (DESIGN.md §1, "shrink-wrap by distance").
+// `distance`: v = -d(x) - lambda kappa (docs/design.md §1, "shrink-wrap by distance").
 //
 // The surface moves inward at the distance to the nearest data point, smoothed by mean-curvature flow.
 // It is fast far from the data and slows as it approaches, but v never changes sign: the surface does
