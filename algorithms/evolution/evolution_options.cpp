@@ -101,7 +101,7 @@ const LevelSetSolver& EvolutionOptions::solver_plugin() const {
 }
 
 void EvolutionOptions::visit(FieldVisitor& v) {
-  v.field("velocity", velocity, "normal velocity plugin: distance, geodesic or distance_balloon (its options: velocity_*)");
+  v.field("velocity", velocity, "normal velocity plugin: geodesic, distance_balloon, distance or paper (its options: velocity_*)");
   v.field("fine_velocity", fine_velocity,
           "velocity of the coarse-to-fine rounds (its options: fine_velocity_*; ours); empty: `velocity`. The "
           "first evolution approaches the data from the enclosing sphere, the rounds start near it");

@@ -259,13 +259,14 @@ class DtslPipeline final : public Reconstructor {
       // ... and MT's record describes that mesh (after an accepted round: the refined level set's).
       nlohmann::json& mt_summary = result.stages[1].summary;
       mt_summary = to_json(mi->summary);
+      mt_summary["output_check"] = check_stage_mesh("MT", mi->mesh, bounds).to_json();
       mt_summary["step"] = step;
       mt_summary["step_halvings"] = retries;
       if (!fallback.empty()) mt_summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
       result.summary["delta"] = step;
       result.summary["nt"] = f.basis().size();
       md = dr.mesh;
-      dr.summary["output_check"] = check_stage_mesh("D-Map", md, bounds, &mi->mesh, true).to_json();
+      dr.summary["output_check"] = check_moving_stage("D-Map", md, bounds, mi->mesh).to_json();
       result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
     }
 
@@ -287,7 +288,7 @@ class DtslPipeline final : public Reconstructor {
       b.delta = step;
       sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
       ms = br.mesh;
-      br.summary["output_check"] = check_stage_mesh("B-Evl", ms, bounds, &md, true).to_json();
+      br.summary["output_check"] = check_moving_stage("B-Evl", ms, bounds, md).to_json();
       result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary, std::nullopt});
     }
     result.mesh = ms;

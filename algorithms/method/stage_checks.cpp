@@ -21,7 +21,8 @@ StageBounds stage_bounds(const std::vector<Vec3>& points) {
 
 nlohmann::json StageCheck::to_json() const {
   return {{"non_finite", non_finite}, {"outside", outside},          {"moved_too_far", moved_too_far},
-          {"repaired", repaired},     {"max_move", max_move},        {"max_outside", max_outside}};
+          {"repaired", repaired},     {"replaced", replaced},        {"max_move", max_move},
+          {"max_outside", max_outside}};
 }
 
 namespace {
@@ -80,6 +81,27 @@ StageCheck check_stage_mesh(const std::string& stage, TriangleMesh& mesh, const 
                          std::to_string(c.non_finite + c.outside + c.moved_too_far) +
                          " vertices out of bounds); no mesh is written");
   return c;
+}
+
+StageCheck check_moving_stage(const std::string& stage, TriangleMesh& mesh, const StageBounds& bounds,
+                              const TriangleMesh& previous) {
+  if (mesh.vertices.size() == previous.vertices.size()) return check_stage_mesh(stage, mesh, bounds, &previous, true);
+  try {
+    return check_stage_mesh(stage, mesh, bounds);
+  } catch (const AlgorithmError&) {
+    StageCheck c;
+    // What was wrong before the replacement, for the record.
+    for (const Vec3& v : mesh.vertices) {
+      if (!v.allFinite()) ++c.non_finite;
+      else if (const double out = distance_outside(bounds.box, v); out > 0.0) {
+        ++c.outside;
+        c.max_outside = std::max(c.max_outside, out);
+      }
+    }
+    c.replaced = true;
+    mesh = previous;
+    return c;
+  }
 }
 
 }  // namespace dtsl

@@ -15,9 +15,12 @@
 //
 // Repair, where the method says how: a D-Map or B-Evl vertex out of bounds goes back to where the
 // previous stage had it (paper §3 displaces a vertex by the distance to its data; where that distance
-// is not meaningful, the undisplaced level-set vertex is the method's own estimate). The previous
-// stage's mesh passed these checks, so the repaired mesh does too. A stage that creates its mesh (MT:
-// the zero set) has nothing to fall back on: its violation is an AlgorithmError naming the stage.
+// is not meaningful, the undisplaced level-set vertex is the method's own estimate). A stage that also
+// remeshes (B-Evl removes degenerate triangles, so its vertices no longer match) cannot be repaired
+// vertex by vertex: its output is replaced by the previous stage's mesh, as if the stage had not run.
+// The previous stage's mesh passed these checks, so the repaired mesh does too. A stage that creates
+// its mesh (MT: the zero set) has nothing to fall back on: its violation is an AlgorithmError naming
+// the stage.
 #pragma once
 
 #include <cstddef>
@@ -48,6 +51,7 @@ struct StageCheck {
   std::size_t outside = 0;         ///< vertices outside the bounds' box
   std::size_t moved_too_far = 0;   ///< vertices farther than max_move from their previous position
   std::size_t repaired = 0;        ///< vertices put back to their previous position
+  bool replaced = false;           ///< the whole output replaced by the previous stage's mesh
   double max_move = 0.0;           ///< the largest finite move (0 without a previous mesh)
   double max_outside = 0.0;        ///< the largest distance outside the box
   int first_bad_vertex = -1;
@@ -62,5 +66,11 @@ struct StageCheck {
 /// violation remains. Returns what was found (and repaired).
 StageCheck check_stage_mesh(const std::string& stage, TriangleMesh& mesh, const StageBounds& bounds,
                             const TriangleMesh* previous = nullptr, bool repair = false);
+
+/// For a stage that moves the mesh `previous` (D-Map, B-Evl): repaired vertex by vertex when the vertex
+/// counts agree; otherwise, on a violation, `mesh` becomes `previous` (StageCheck::replaced). Never
+/// throws for a violation.
+StageCheck check_moving_stage(const std::string& stage, TriangleMesh& mesh, const StageBounds& bounds,
+                              const TriangleMesh& previous);
 
 }  // namespace dtsl

@@ -75,3 +75,25 @@ TEST_CASE("a vertex a moving stage sends out of bounds goes back to where the pr
   fewer.vertices.pop_back();
   CHECK_THROWS_WITH(check_stage_mesh("D-Map", fewer, f.bounds, &before, true), Contains("vertices"));
 }
+
+TEST_CASE("a moving stage that also remeshes is replaced by the previous mesh when it breaks the bounds") {
+  Fixture f;
+  const TriangleMesh before = f.mesh;
+  TriangleMesh remeshed = test::icosphere(1, 0.8);  // other vertices than `before`
+  const StageCheck fine = check_moving_stage("B-Evl", remeshed, f.bounds, before);
+  CHECK(fine.ok());
+  CHECK_FALSE(fine.replaced);
+  CHECK(remeshed.vertices.size() != before.vertices.size());
+  remeshed.vertices[2] = Vec3(0, 400, 0);
+  const StageCheck broken = check_moving_stage("B-Evl", remeshed, f.bounds, before);
+  CHECK(broken.replaced);
+  CHECK(broken.outside == 1);
+  CHECK(remeshed.vertices == before.vertices);
+  // Same vertices: repaired one by one instead.
+  TriangleMesh moved = before;
+  moved.vertices[4] = Vec3(0, 400, 0);
+  const StageCheck repaired = check_moving_stage("D-Map", moved, f.bounds, before);
+  CHECK_FALSE(repaired.replaced);
+  CHECK(repaired.repaired == 1);
+  CHECK(moved.vertices[4] == before.vertices[4]);
+}
