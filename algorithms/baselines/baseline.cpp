@@ -23,18 +23,22 @@ std::string format_number(double value) {
   return s.str();
 }
 
-void rethrow_pcl_failure(const std::string& method) {
+void rethrow_library_failure(const std::string& method, const std::string& library, const std::string& memory_hint) {
   try {
     throw;
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
-    throw AlgorithmError(method + ": out of memory inside PCL (reduce the grid resolution, depth or input size)");
+    throw AlgorithmError(method + ": out of memory inside " + library + " (" + memory_hint + ")");
   } catch (const std::exception& e) {
-    throw AlgorithmError(method + ": PCL failed: " + e.what());
+    throw AlgorithmError(method + ": " + library + " failed: " + e.what());
   } catch (...) {
-    throw AlgorithmError(method + ": PCL failed with an unknown exception");
+    throw AlgorithmError(method + ": " + library + " failed with an unknown exception");
   }
+}
+
+void rethrow_pcl_failure(const std::string& method) {
+  rethrow_library_failure(method, "PCL", "reduce the grid resolution, depth or input size");
 }
 
 // ---- input validation ---------------------------------------------------------------------------
@@ -313,26 +317,61 @@ ReconstructionResult PclBaseline::reconstruct(const PointCloud& points, const Ru
   result.stages.push_back(std::move(normals_stage));
 
   // Stage 2: the PCL method.
-  StageRecord stage;
-  stage.name = "reconstruct";
-  Stopwatch clock;
-  nlohmann::json summary = nlohmann::json::object();
-  summary["input_points"] = oriented.size();
-  TriangleMesh mesh = run(oriented, context, summary);
-  stage.seconds = clock.seconds();
-  if (mesh.faces.empty())
-    throw AlgorithmError(name_ + " produced no triangles from " + std::to_string(oriented.size()) +
-                         " points; " + empty_hint());
-  summary["vertices"] = mesh.vertices.size();
-  summary["faces"] = mesh.faces.size();
-  stage.summary = std::move(summary);
-  result.stages.push_back(std::move(stage));
+  TriangleMesh mesh;
+  result.stages.push_back(reconstruct_stage(
+      name_, oriented.size(), [&](nlohmann::json& summary) { return run(oriented, context, summary); },
+      [this] { return empty_hint(); }, mesh));
 
   result.summary["normals_source"] = source;
   result.summary["input_points"] = points.size();
   result.summary["duplicates_removed"] = duplicates;
   result.mesh = std::move(mesh);
   return result;
+}
+
+StageRecord reconstruct_stage(const std::string& method, std::size_t points,
+                              const std::function<TriangleMesh(nlohmann::json&)>& run,
+                              const std::function<std::string()>& hint, TriangleMesh& mesh) {
+  StageRecord stage;
+  stage.name = "reconstruct";
+  Stopwatch clock;
+  nlohmann::json summary = nlohmann::json::object();
+  summary["input_points"] = points;
+  mesh = run(summary);
+  stage.seconds = clock.seconds();
+  if (mesh.faces.empty())
+    throw AlgorithmError(method + " produced no triangles from " + std::to_string(points) + " points; " + hint());
+  summary["vertices"] = mesh.vertices.size();
+  summary["faces"] = mesh.faces.size();
+  stage.summary = std::move(summary);
+  return stage;
+}
+
+ReconstructionResult PointsBaseline::reconstruct(const PointCloud& points, const RunContext& context) {
+  options().check();
+  std::size_t duplicates = 0;
+  const PointCloud cloud = validated_input(name_, points, requirements(), &duplicates);
+  ReconstructionResult result;
+  TriangleMesh mesh;
+  result.stages.push_back(reconstruct_stage(
+      name_, cloud.size(), [&](nlohmann::json& summary) { return run(cloud, context, summary); },
+      [this] { return empty_hint(); }, mesh));
+  result.summary["normals_source"] = normals_source();
+  result.summary["input_points"] = points.size();
+  result.summary["duplicates_removed"] = duplicates;
+  result.mesh = std::move(mesh);
+  return result;
+}
+
+bool orient_outward(TriangleMesh& mesh, const Vec3& centre) {
+  double volume = 0.0;
+  for (const Face& f : mesh.faces) {
+    const Vec3 a = mesh.vertices[f[0]] - centre, b = mesh.vertices[f[1]] - centre, c = mesh.vertices[f[2]] - centre;
+    volume += a.dot(b.cross(c));
+  }
+  if (!(volume < 0.0)) return false;
+  for (Face& f : mesh.faces) std::swap(f[1], f[2]);
+  return true;
 }
 
 }  // namespace dtsl::baselines

@@ -1,9 +1,11 @@
-// Private to algorithms/baselines: the shell shared by the PCL baselines — input validation (counts,
-// finiteness, duplicates, degenerate shapes), the normal source, the clean-up of PCL's polygon output
-// into a TriangleMesh, and the stage records. No PCL header here: the PCL calls live in one .cpp per
-// method (poisson.cpp, marching_cubes.cpp, gp3.cpp, grid_projection.cpp) and pcl_convert.cpp.
+// Private to algorithms/baselines: the shell shared by the baselines — input validation (counts,
+// finiteness, duplicates, degenerate shapes), the normal source, the clean-up of polygon output into a
+// TriangleMesh, and the stage records. No PCL or CGAL header here: the library calls live in one .cpp
+// per method (poisson.cpp, marching_cubes.cpp, gp3.cpp, grid_projection.cpp, cgal_advancing_front.cpp,
+// cgal_scale_space.cpp), pcl_convert.cpp, and external.cpp for a command-line reconstructor.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,7 +17,7 @@
 
 namespace dtsl::baselines {
 
-/// What a method needs of its input before PCL may see it.
+/// What a method needs of its input before PCL (or CGAL, or an external program) may see it.
 struct InputRequirements {
   std::size_t min_points = 10;  ///< distinct points (after merging duplicates)
   bool needs_volume = true;     ///< refuse coplanar input: the method builds an inside/outside function
@@ -84,12 +86,48 @@ class PclBaseline : public Reconstructor {
   std::string name_;
 };
 
+/// The common body of the baselines that take the points as given (no normal stage): validate, run
+/// the method (stage "reconstruct"), refuse an empty result. CGAL's interpolating reconstructors and
+/// the external command derive from it.
+class PointsBaseline : public Reconstructor {
+ public:
+  ReconstructionResult reconstruct(const PointCloud& points, const RunContext& context) final;
+
+ protected:
+  explicit PointsBaseline(std::string name) : name_(std::move(name)) {}
+  const std::string& name() const { return name_; }
+
+  virtual InputRequirements requirements() const = 0;
+  /// "normals_source" of the result: "none", or "ground_truth" if the method is given the cloud's normals.
+  virtual std::string normals_source() const { return "none"; }
+  /// Runs the method on `cloud` (validated, no duplicates); as PclBaseline::run.
+  virtual TriangleMesh run(const PointCloud& cloud, const RunContext& context, nlohmann::json& summary) = 0;
+  virtual std::string empty_hint() const = 0;
+
+ private:
+  std::string name_;
+};
+
+/// Stage "reconstruct" of either shell: times `run`, refuses a mesh without faces (AlgorithmError naming
+/// `method`, the point count and `hint`), records the mesh's counts in the summary.
+StageRecord reconstruct_stage(const std::string& method, std::size_t points,
+                              const std::function<TriangleMesh(nlohmann::json&)>& run,
+                              const std::function<std::string()>& hint, TriangleMesh& mesh);
+
+/// Reverses every triangle if the mesh encloses a negative signed volume about `centre`: CGAL's
+/// interpolating meshes are consistently oriented per component but not necessarily outward.
+/// Returns whether it flipped.
+bool orient_outward(TriangleMesh& mesh, const Vec3& centre);
+
 // Factories of the registered baselines (one .cpp each; registration in baselines.cpp).
 std::unique_ptr<Reconstructor> make_pcl_poisson();
 std::unique_ptr<Reconstructor> make_pcl_mc_hoppe();
 std::unique_ptr<Reconstructor> make_pcl_mc_rbf();
 std::unique_ptr<Reconstructor> make_pcl_gp3();
 std::unique_ptr<Reconstructor> make_pcl_grid();
+std::unique_ptr<Reconstructor> make_cgal_advancing_front();
+std::unique_ptr<Reconstructor> make_cgal_scale_space();
+std::unique_ptr<Reconstructor> make_external();
 
 /// Runs `body` (a PCL call) and turns std::bad_alloc and other std::exceptions into AlgorithmError
 /// naming `method`.
@@ -100,6 +138,10 @@ std::string format_number(double value);
 
 // ---- implementation of the template ------------------------------------------------------------
 
+/// Inside a catch block: rethrows dtsl's own errors, and turns the current exception into an
+/// AlgorithmError naming `method` and `library` (with `memory_hint` for std::bad_alloc).
+[[noreturn]] void rethrow_library_failure(const std::string& method, const std::string& library,
+                                          const std::string& memory_hint);
 [[noreturn]] void rethrow_pcl_failure(const std::string& method);
 
 template <class F>

@@ -22,6 +22,17 @@ void register_baselines() {
       &baselines::make_pcl_gp3);
   add("pcl_grid", "PCL grid projection: surface points projected along a normal-derived vector field",
       &baselines::make_pcl_grid);
+  add("cgal_advancing_front",
+      "CGAL advancing front: grows a surface over Delaunay facets through the points; no normals, "
+      "leaves holes where sparse",
+      &baselines::make_cgal_advancing_front);
+  add("cgal_scale_space",
+      "CGAL scale space: meshes smoothed points (advancing front or alpha shape), keeps the input points; "
+      "no normals",
+      &baselines::make_cgal_scale_space);
+  add("external",
+      "any command-line reconstructor: writes the points to {in}, runs `command`, reads the mesh from {out}",
+      &baselines::make_external);
 }
 
 }  // namespace dtsl

@@ -1,4 +1,6 @@
-// PCL's surface reconstructors as pipelines: pcl_poisson, pcl_mc_hoppe, pcl_mc_rbf, pcl_gp3, pcl_grid.
+// The baselines as pipelines: PCL's surface reconstructors (pcl_poisson, pcl_mc_hoppe, pcl_mc_rbf,
+// pcl_gp3, pcl_grid), CGAL's interpolating ones (cgal_advancing_front, cgal_scale_space), and `external`,
+// any command-line reconstructor.
 #pragma once
 
 namespace dtsl {

@@ -17,6 +17,7 @@
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "framework/pipeline/reconstructor.hpp"
+#include "tests/baselines/pipeline_helpers.hpp"
 
 namespace {
 
@@ -29,25 +30,12 @@ constexpr double kRadius = 0.95;
 // n points uniform on the sphere of radius kRadius (so the cloud fills the [-1,1]^3 frame), with exact
 // outward normals if `normals`.
 PointCloud sphere(std::size_t n, bool normals = true, std::uint64_t seed = 7) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g;
-  PointCloud c;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 u = Vec3(g(rng), g(rng), g(rng)).normalized();
-    c.points.push_back(kRadius * u);
-    if (normals) c.normals.push_back(u);
-  }
-  return c;
+  return test::sampled_sphere(n, kRadius, normals, seed);
 }
 
-std::unique_ptr<Reconstructor> create(const std::string& name) {
-  register_all_plugins();
-  return reconstructors().create(name, "test");
-}
-
-void set(Reconstructor& r, const std::string& key, const std::string& value) {
-  apply_assignment(r.options(), key, value, "test");
-}
+using test::create;
+using test::set;
+using test::signed_volume;
 
 struct RadialError {
   double mean = 0.0, max = 0.0;
@@ -61,12 +49,6 @@ RadialError radial_error(const TriangleMesh& m) {
   }
   e.mean /= std::max<std::size_t>(1, m.vertices.size());
   return e;
-}
-
-double signed_volume(const TriangleMesh& m) {
-  double v = 0.0;
-  for (const Face& f : m.faces) v += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]])) / 6.0;
-  return v;
 }
 
 const StageRecord* stage(const ReconstructionResult& r, const std::string& name) {

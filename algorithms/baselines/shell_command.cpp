@@ -1,0 +1,161 @@
+#include "algorithms/baselines/shell_command.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
+
+extern char** environ;
+
+namespace dtsl::baselines {
+
+std::string CommandOutcome::describe() const {
+  std::ostringstream s;
+  if (timed_out)
+    s << "timed out after " << seconds << " s";
+  else if (signal != 0)
+    s << "killed by signal " << signal << " (" << strsignal(signal) << ")";
+  else
+    s << "exit status " << exit_status;
+  return s.str();
+}
+
+namespace {
+
+// The last `max_lines` lines of `path` (at most `max_chars` characters), without trailing blank lines.
+std::string file_tail(const std::string& path, std::size_t max_lines = 12, std::size_t max_chars = 1500) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  std::size_t start = text.size();
+  for (std::size_t lines = 0; lines < max_lines && start > 0; ++lines) {
+    const std::size_t newline = text.rfind('\n', start - 1);
+    start = newline == std::string::npos ? 0 : newline;
+  }
+  if (start < text.size() && text[start] == '\n') ++start;
+  if (text.size() - start > max_chars) start = text.size() - max_chars;
+  return text.substr(start);
+}
+
+// Posix_spawn's file actions, freed however the function leaves.
+struct SpawnSetup {
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  SpawnSetup() {
+    posix_spawn_file_actions_init(&actions);
+    posix_spawnattr_init(&attributes);
+  }
+  ~SpawnSetup() {
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+  }
+};
+
+}  // namespace
+
+CommandOutcome run_shell_command(const std::string& command, const std::string& log_dir, double timeout_seconds) {
+  const std::string out_path = log_dir + "/stdout.txt", err_path = log_dir + "/stderr.txt";
+  SpawnSetup setup;
+  posix_spawn_file_actions_addopen(&setup.actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&setup.actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&setup.actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // A process group of its own: a timeout kills the shell and everything it started.
+  posix_spawnattr_setflags(&setup.attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&setup.attributes, 0);
+
+  std::string shell = "/bin/sh", dash_c = "-c", body = command;
+  char* argv[] = {shell.data(), dash_c.data(), body.data(), nullptr};
+  Stopwatch clock;
+  pid_t pid = 0;
+  const int spawn_error = posix_spawn(&pid, "/bin/sh", &setup.actions, &setup.attributes, argv, environ);
+  if (spawn_error != 0)
+    throw AlgorithmError("cannot start /bin/sh for '" + command + "': " + std::strerror(spawn_error));
+
+  CommandOutcome outcome;
+  int status = 0;
+  rusage usage{};
+  auto wait_for = [&](int flags) {
+    pid_t r;
+    do r = wait4(pid, &status, flags, &usage);
+    while (r < 0 && errno == EINTR);
+    return r;
+  };
+  // Polling keeps this free of signal handlers (the runner and OpenMP own the process's signals).
+  std::chrono::milliseconds pause(1);
+  while (wait_for(WNOHANG) == 0) {
+    if (clock.seconds() > timeout_seconds) {
+      kill(-pid, SIGKILL);
+      wait_for(0);
+      outcome.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(50));
+  }
+  outcome.seconds = clock.seconds();
+  outcome.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+  if (!outcome.timed_out) {
+    if (WIFEXITED(status)) outcome.exit_status = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) outcome.signal = WTERMSIG(status);
+  } else {
+    outcome.signal = SIGKILL;
+    kill(-pid, SIGKILL);  // anything the shell left behind in its group
+  }
+  outcome.output_tail = file_tail(err_path);
+  if (outcome.output_tail.empty()) outcome.output_tail = file_tail(out_path);
+  return outcome;
+}
+
+std::string shell_quote(const std::string& text) {
+  const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) {
+    return std::isalnum(c) || std::strchr("/._-+,:@%", c) != nullptr;
+  });
+  if (plain) return text;
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string command_program(const std::string& command) {
+  std::size_t i = command.find_first_not_of(" \t\n");
+  if (i == std::string::npos) return "";
+  const char quote = command[i];
+  if (quote == '\'' || quote == '"') {
+    const std::size_t end = command.find(quote, i + 1);
+    return command.substr(i + 1, end == std::string::npos ? std::string::npos : end - i - 1);
+  }
+  const std::size_t end = command.find_first_of(" \t\n;&|<>()", i);
+  return command.substr(i, end == std::string::npos ? std::string::npos : end - i);
+}
+
+bool program_available(const std::string& program) {
+  auto executable = [](const std::string& path) {
+    struct stat st{};
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(path.c_str(), X_OK) == 0;
+  };
+  if (program.empty()) return false;
+  if (program.find('/') != std::string::npos) return executable(program);
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
+  for (std::string dir; std::getline(dirs, dir, ':');)
+    if (executable((dir.empty() ? "." : dir) + "/" + program)) return true;
+  return false;
+}
+
+}  // namespace dtsl::baselines
