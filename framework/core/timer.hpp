@@ -16,7 +16,8 @@ class Stopwatch {
   Clock::time_point start_;
 };
 
-/// Peak resident set size of this process so far, in MiB (getrusage ru_maxrss).
+/// Peak resident set size of this process so far, or of the largest child process it waited for if
+/// larger (an external command), in MiB (getrusage ru_maxrss).
 double peak_memory_mib();
 
 }  // namespace dtsl
