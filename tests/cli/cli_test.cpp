@@ -75,7 +75,7 @@ TEST_CASE("dtsl list names every registered kind and the baselines") {
 }
 
 TEST_CASE("dtsl list keeps an option's name apart from its type, however long the name") {
-  const Outcome o = dtsl("list pipeline");
+  const Outcome o = dtsl("list pipeline dtsl");
   REQUIRE(o.code == 0);
   // The dtsl pipeline's longest names (evolution_solver_preconditioner, ...) once ran into their type.
   for (const char* name : {"evolution_distance_tolerance", "evolution_solver_preconditioner",
