@@ -2,7 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -53,39 +53,42 @@ std::string file_tail(const std::string& path, std::size_t max_lines = 12, std::
   return text.substr(start);
 }
 
-// Posix_spawn's file actions, freed however the function leaves.
-struct SpawnSetup {
-  posix_spawn_file_actions_t actions;
-  posix_spawnattr_t attributes;
-  SpawnSetup() {
-    posix_spawn_file_actions_init(&actions);
-    posix_spawnattr_init(&attributes);
-  }
-  ~SpawnSetup() {
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-  }
-};
-
 }  // namespace
 
 CommandOutcome run_shell_command(const std::string& command, const std::string& log_dir, double timeout_seconds) {
   const std::string out_path = log_dir + "/stdout.txt", err_path = log_dir + "/stderr.txt";
-  SpawnSetup setup;
-  posix_spawn_file_actions_addopen(&setup.actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&setup.actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&setup.actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  // A process group of its own: a timeout kills the shell and everything it started.
-  posix_spawnattr_setflags(&setup.attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&setup.attributes, 0);
-
+  // Everything the child needs is prepared before fork: between fork and exec only async-signal-safe
+  // calls (the parent may run OpenMP threads).
+  const int out_fd = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int null_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
+  auto close_all = [&] {
+    for (int fd : {out_fd, err_fd, null_fd})
+      if (fd >= 0) close(fd);
+  };
+  if (out_fd < 0 || err_fd < 0 || null_fd < 0) {
+    close_all();
+    throw AlgorithmError("cannot open the log files of '" + command + "' in " + log_dir);
+  }
   std::string shell = "/bin/sh", dash_c = "-c", body = command;
   char* argv[] = {shell.data(), dash_c.data(), body.data(), nullptr};
+  const pid_t parent = getpid();
   Stopwatch clock;
-  pid_t pid = 0;
-  const int spawn_error = posix_spawn(&pid, "/bin/sh", &setup.actions, &setup.attributes, argv, environ);
-  if (spawn_error != 0)
-    throw AlgorithmError("cannot start /bin/sh for '" + command + "': " + std::strerror(spawn_error));
+  const pid_t pid = fork();
+  if (pid == 0) {
+    // A process group of its own, so a timeout kills the shell and everything it started; and it dies
+    // with this process (a run the sweep kills must not leave the command running).
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(126);
+    if (dup2(null_fd, 0) < 0 || dup2(out_fd, 1) < 0 || dup2(err_fd, 2) < 0) _exit(126);
+    execve("/bin/sh", argv, environ);
+    _exit(127);
+  }
+  const int fork_error = errno;
+  close_all();
+  if (pid < 0) throw AlgorithmError("cannot start /bin/sh for '" + command + "': " + std::strerror(fork_error));
+  setpgid(pid, pid);  // also from this side, so the group exists before any kill below
 
   CommandOutcome outcome;
   int status = 0;
@@ -98,7 +101,8 @@ CommandOutcome run_shell_command(const std::string& command, const std::string& 
   };
   // Polling keeps this free of signal handlers (the runner and OpenMP own the process's signals).
   std::chrono::milliseconds pause(1);
-  while (wait_for(WNOHANG) == 0) {
+  pid_t waited;
+  while ((waited = wait_for(WNOHANG)) == 0) {
     if (clock.seconds() > timeout_seconds) {
       kill(-pid, SIGKILL);
       wait_for(0);
@@ -108,6 +112,10 @@ CommandOutcome run_shell_command(const std::string& command, const std::string& 
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(50));
   }
+  const int wait_error = errno;
+  kill(-pid, SIGKILL);  // anything the shell left behind in its group
+  if (waited < 0)
+    throw AlgorithmError("cannot wait for '" + command + "': " + std::strerror(wait_error));
   outcome.seconds = clock.seconds();
   outcome.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
   if (!outcome.timed_out) {
@@ -115,7 +123,6 @@ CommandOutcome run_shell_command(const std::string& command, const std::string& 
     if (WIFSIGNALED(status)) outcome.signal = WTERMSIG(status);
   } else {
     outcome.signal = SIGKILL;
-    kill(-pid, SIGKILL);  // anything the shell left behind in its group
   }
   outcome.output_tail = file_tail(err_path);
   if (outcome.output_tail.empty()) outcome.output_tail = file_tail(out_path);

@@ -1,6 +1,6 @@
 // Private to algorithms/baselines: running a command line through /bin/sh with a time limit, for the
-// `external` pipeline. POSIX only (posix_spawn, a process group per command so a timeout kills the
-// whole tree the shell started).
+// `external` pipeline. Linux only (fork/exec; a process group per command so a timeout kills the whole
+// tree the shell started; PR_SET_PDEATHSIG so the command dies with the run that started it).
 #pragma once
 
 #include <string>

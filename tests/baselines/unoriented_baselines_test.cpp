@@ -14,6 +14,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "experiments/plugins.hpp"
@@ -227,6 +228,29 @@ TEST_CASE("external writes the points (and normals on request) where {in} says",
   for (std::string line; std::getline(in, line) && line != "end_header";) header += line + "\n";
   CHECK_THAT(header, Contains("element vertex 300") && Contains("property double x"));
   CHECK((header.find("property double nx") != std::string::npos) == normals);
+}
+
+TEST_CASE("external leaves nothing running that its command started", "[baselines][unoriented][external]") {
+  const ScratchDir dir;
+  const std::string pid_file = (dir.path / "pid").string();
+  // Starts a background sleep, records its process id, answers with a tetrahedron and exits.
+  const std::string stub = dir.script("daemon.sh", "sleep 30 &\necho $! > '" + pid_file + "'\n" +
+                                                       std::string(kTetrahedronScript));
+  auto r = create("external");
+  set(*r, "command", stub + " {in} {out}");
+  set(*r, "output", "off");
+  CHECK(r->reconstruct(sphere(100), RunContext{}).mesh.faces.size() == 4);
+  int pid = 0;
+  std::ifstream(pid_file) >> pid;
+  REQUIRE(pid > 0);
+  // Gone, or a zombie nobody reaps (a container's init may not): not running either way.
+  auto running = [pid] {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string id, name, state;
+    return static_cast<bool>(stat >> id >> name >> state) && state != "Z";
+  };
+  for (int i = 0; i < 100 && running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK(!running());
 }
 
 TEST_CASE("external with a missing program says it is skipped and names the program", "[baselines][unoriented][external]") {
