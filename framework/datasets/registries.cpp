@@ -25,6 +25,10 @@ void register_dataset_plugins() {
   static const bool done = [] {
     dataset_detail::register_synthetic_shapes();
     dataset_detail::register_block_shape();
+    dataset_detail::register_plate_shapes();
+    dataset_detail::register_lattice_shape();
+    dataset_detail::register_pair_shape();
+    dataset_detail::register_dumbbell_shape();
     dataset_detail::register_model_shapes();
     dataset_detail::register_samplers();
     dataset_detail::register_corruptions();

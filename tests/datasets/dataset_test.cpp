@@ -69,7 +69,8 @@ TEST_CASE("register_dataset_plugins is idempotent and registers every plugin", "
   register_dataset_plugins();
   register_dataset_plugins();
   CHECK(shape_sources().names() ==
-        std::vector<std::string>{"block", "cgal_model", "file", "sphere", "torus", "two_spheres"});
+        std::vector<std::string>{"block", "cgal_model", "dumbbell", "file", "high_genus", "lattice", "pair",
+                                 "plate_holes", "sphere", "torus", "two_spheres"});
   CHECK(samplers().names() == std::vector<std::string>{"area", "none", "vertices"});
   CHECK(corruptions().names() ==
         std::vector<std::string>{"holes", "noise", "outliers", "plane_cut", "subsample"});
@@ -125,9 +126,11 @@ TEST_CASE("parse_dataset: bad entries are ConfigErrors naming the key path", "[d
              Catch::StartsWith("datasets[0].corruptions[0].size: unknown key"));
   // Unknown plugin names, listing the known ones.
   CHECK(error("{name: a, shape: cube}") ==
-        "datasets[0].shape: unknown shape 'cube'; known: block, cgal_model, file, sphere, torus, two_spheres");
+        "datasets[0].shape: unknown shape 'cube'; known: block, cgal_model, dumbbell, file, high_genus, lattice, "
+        "pair, plate_holes, sphere, torus, two_spheres");
   CHECK(error("{name: a, shape: {type: cube}}") ==
-        "datasets[0].shape.type: unknown shape 'cube'; known: block, cgal_model, file, sphere, torus, two_spheres");
+        "datasets[0].shape.type: unknown shape 'cube'; known: block, cgal_model, dumbbell, file, high_genus, "
+        "lattice, pair, plate_holes, sphere, torus, two_spheres");
   CHECK(error("{name: a, shape: sphere, sampler: poisson}") ==
         "datasets[0].sampler: unknown sampler 'poisson'; known: area, none, vertices");
   CHECK(error("{name: a, shape: sphere, corruptions: [{type: blur}]}") ==

@@ -13,6 +13,7 @@
 #include "framework/core/error.hpp"
 #include "framework/datasets/dataset.hpp"
 #include "framework/metrics/metrics.hpp"
+#include "tests/datasets/option_errors.hpp"
 
 using namespace dtsl;
 
@@ -249,16 +250,7 @@ TEST_CASE("block: other proportions stay closed genus 1", "[datasets][shapes]") 
 }
 
 TEST_CASE("shape options are checked, naming the field", "[datasets][shapes][bad]") {
-  register_dataset_plugins();
-  auto expect = [](const std::string& type, const std::string& yaml, const std::string& message) {
-    auto shape = shape_sources().create(type, "s");
-    try {
-      apply_yaml(shape->options(), YAML::Load(yaml), "s");
-      FAIL("no ConfigError for " << type << " " << yaml);
-    } catch (const ConfigError& e) {
-      CHECK_THAT(e.what(), Catch::StartsWith(message));
-    }
-  };
+  const auto expect = test::expect_shape_option_error;
   expect("sphere", "{radius: 0}", "s.radius: must be positive, got 0");
   expect("sphere", "{centre: [1, 2]}", "s.centre: must have 3 entries, got 2");
   expect("sphere", "{subdivisions: 12}", "s.subdivisions: must be in [0, 8], got 12");
