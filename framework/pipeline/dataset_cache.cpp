@@ -6,6 +6,7 @@
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
 #include "framework/io/io.hpp"
+#include "framework/metrics/metrics.hpp"
 
 namespace dtsl {
 
@@ -19,6 +20,9 @@ void write_dataset(const std::string& dir, const Dataset& dataset) {
   j["name"] = dataset.name;
   j["points"] = dataset.points.size();
   j["has_ground_truth"] = dataset.ground_truth.has_value();
+  // Once per dataset: the truth's topology, which every run's record carries for the truth_genus,
+  // truth_components and topology_ok columns.
+  if (dataset.ground_truth) j["ground_truth_mesh"] = to_json(mesh_stats(*dataset.ground_truth));
   write_file_atomically(dir + "/dataset.json", [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 

@@ -68,6 +68,9 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
   record["seed"] = seed;
   record["np"] = dataset.points.size();
   record["dataset_has_ground_truth"] = dataset.ground_truth.has_value();
+  if (dataset.ground_truth)  // the truth's statistics as written with the dataset, else measured here
+    record["truth_mesh"] = dataset.description.contains("ground_truth_mesh") ? dataset.description["ground_truth_mesh"]
+                                                                             : to_json(mesh_stats(*dataset.ground_truth));
   Stopwatch total;
   try {
     auto pipeline = reconstructors().create(run.pipeline_type, run.id);

@@ -30,6 +30,18 @@ const json* stage_with(const json& r, const char* key, const std::string& value)
   return nullptr;
 }
 
+/// "1" if the result has the truth's genus and components (so it is closed, as a genus is only defined
+/// for a closed mesh), "0" if not, "–" without a result or without a closed truth to compare with.
+std::string topology_ok(const json& r) {
+  const json *tg = at(r, {"truth_mesh", "genus"}), *tc = at(r, {"truth_mesh", "components"});
+  const json* mesh = at(r, {"final", "mesh"});
+  if (!tg || !tg->is_number() || !tc || !tc->is_number() || !mesh) return "–";
+  const json *g = at(*mesh, {"genus"}), *c = at(*mesh, {"components"});
+  const bool same = g && g->is_number() && c && c->is_number() && g->get<double>() == tg->get<double>() &&
+                    c->get<double>() == tc->get<double>();
+  return same ? "1" : "0";
+}
+
 struct ColumnDef {
   std::string header;
   std::function<std::string(const json&)> cell;
@@ -123,6 +135,9 @@ bool resolve(const std::string& name, ColumnDef& out) {
                       }}},
       {"components", {"comp.", [](const json& r) { return number(at(r, {"final", "mesh", "components"}), 1, "%.0f"); }}},
       {"genus", {"genus", [](const json& r) { return number(at(r, {"final", "mesh", "genus"}), 1, "%.0f"); }}},
+      {"truth_components", {"truth comp.", [](const json& r) { return number(at(r, {"truth_mesh", "components"}), 1, "%.0f"); }}},
+      {"truth_genus", {"truth genus", [](const json& r) { return number(at(r, {"truth_mesh", "genus"}), 1, "%.0f"); }}},
+      {"topology_ok", {"topology ok", topology_ok}},
       {"min_angle", {"min angle p1 (deg)", [](const json& r) { return number(at(r, {"final", "mesh", "min_angle_p01_deg"}), 1, "%.1f"); }}},
       {"valence6", {"valence 6", [](const json& r) { return number(at(r, {"final", "mesh", "valence6_fraction"}), 1, "%.2f"); }}},
       {"time", {"time (s)", [](const json& r) { return number(at(r, {"time_total"}), 1, "%.2f"); }}},
@@ -165,7 +180,8 @@ std::vector<std::string> default_columns() {
 
 std::string describe_columns() {
   return "dataset pipeline type np nv nf e_avr e_max accuracy completeness chamfer hausdorff nc fscore "
-         "watertight components genus min_angle valence6 time memory normals status, and per stage: "
+         "watertight components genus truth_components truth_genus topology_ok min_angle valence6 time memory "
+         "normals status, and per stage: "
          "e_avr@LABEL e_max@LABEL nv@LABEL (stage mesh label, e.g. MI MD MS), chamfer@LABEL accuracy@LABEL "
          "completeness@LABEL (with metrics.stage_surfaces), time@STAGE, stage@STAGE.KEY (a value of the stage's "
          "summary, nested keys joined by '.', e.g. stage@B-Evl.iterations), summary@KEY";
