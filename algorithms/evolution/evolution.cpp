@@ -76,6 +76,7 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
     v[j] = velocity.speed(s);
     if (support && v[j] > -kStalledSpeed && spans_empty_space(f, *support, p.position, s.normal, nearest)) {
       s.unsupported = true;
+      s.spacing = support->spacing_at(nearest.index);
       v[j] = velocity.speed(s);
       count += 1;
     }

@@ -30,6 +30,8 @@ struct VelocitySample {
   /// slower inward than kStalledSpeed: the zero set spans empty space here (support.hpp), e.g. a
   /// membrane over a through-hole or across the gap between two objects.
   bool unsupported = false;
+  /// Only with the above: the local sampling spacing h at the nearest data point (support.hpp).
+  double spacing = 0.0;
 };
 
 /// Inward speeds slower than this (in units of the far-field speed 1 of `geodesic`) count as stalled:

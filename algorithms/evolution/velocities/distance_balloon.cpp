@@ -30,20 +30,21 @@ namespace {
 struct DistanceBalloonOptions final : Options {
   double beta = 0.2;
   double lambda = 0.01;
-  bool open_membranes = true;
+  double open_gap = 1.0;
 
   void visit(FieldVisitor& v) override {
     v.field("beta", beta,
             "balloon weight in [0, 1): v = -d (grad d . n + beta) - lambda d kappa; pushes into concavities "
             "where grad d . n ~ 0, and the surface sags about beta x half the sample spacing between samples");
     v.field("lambda", lambda, "weight of the curvature term (frame units per unit curvature), scaled by d");
-    v.field("open_membranes", open_membranes,
-            "where the zero set spans empty space (support.hpp), move inward at the far-field speed "
-            "(1 + beta) d instead");
+    v.field("open_gap", open_gap,
+            "where the zero set spans empty space (support.hpp) farther than this many local spacings from "
+            "the data, move inward at the far-field speed (1 + beta) d instead (ours); 0: never");
   }
   void check() const override {
     check_range("beta", beta, 0.0, 0.95);
     check_range("lambda", lambda, 0.0, 10.0);
+    check_range("open_gap", open_gap, 0.0, 1e3);
   }
 };
 
@@ -52,9 +53,10 @@ class DistanceBalloonVelocity final : public VelocityWith<DistanceBalloonOptions
   double speed(const VelocitySample& s) const override {
     const double v = -s.distance * (s.distance_gradient.dot(s.normal) + options_.beta + options_.lambda * s.curvature);
     // Spanning empty space (support.hpp): the far-field speed, as if facing data.
-    return s.unsupported ? std::min(v, -(1.0 + options_.beta) * s.distance) : v;
+    return s.unsupported && s.distance > options_.open_gap * s.spacing ? std::min(v, -(1.0 + options_.beta) * s.distance)
+                                                                          : v;
   }
-  bool wants_support() const override { return options_.open_membranes; }
+  bool wants_support() const override { return options_.open_gap > 0.0; }
 };
 
 }  // namespace

@@ -10,8 +10,10 @@
 //
 // Where the zero set spans empty space (support.hpp: a membrane over a through-hole, a bridge across
 // the gap between two objects), grad d . n and kappa are about 0 and the flow above stalls; there the
-// surface moves inward at the far-field speed 1 instead (`open_membranes`, ours), until the membrane
-// opens or meets data. `paper` is the flow of the paper's §2.1 as published (its refs [9], [55]):
+// surface moves inward at the far-field speed 1 instead (ours), until the membrane opens or meets
+// data — where it lies farther than `open_gap` local spacings from the data. Through-holes and gaps
+// between objects narrower than twice that stay closed, and so do gaps in the data across a thin part
+// (a scanner's hole through an ear leaves its tip as a separate cluster: support.hpp). `paper` is the flow of the paper's §2.1 as published (its refs [9], [55]):
 // uncapped, and membranes stay.
 #include "algorithms/evolution/velocities/velocities.hpp"
 
@@ -24,7 +26,7 @@ namespace {
 struct GeodesicVelocityOptions final : Options {
   double lambda = 1.0;
   double max_smoothing = 0.8;
-  bool open_membranes = true;
+  double open_gap = 1.0;
 
   void visit(FieldVisitor& v) override {
     v.field("lambda", lambda,
@@ -34,13 +36,15 @@ struct GeodesicVelocityOptions final : Options {
             "cap on |lambda d kappa| (ours): below 1 the data's pull (|grad d . n| up to 1) outweighs the "
             "curvature term, so thin parts sampled more sparsely than they are thick (the bunny's ears) are "
             "not eroded; 1e9: uncapped");
-    v.field("open_membranes", open_membranes,
+    v.field("open_gap", open_gap,
             "where the zero set spans empty space (a membrane over a through-hole or across a gap between "
-            "objects: support.hpp), move inward at the far-field speed 1 instead of stalling");
+            "objects: support.hpp) farther than this many local spacings from the data, move inward at the "
+            "far-field speed 1 instead of stalling (ours); 0: never (membranes stay)");
   }
   void check() const override {
     check_range("lambda", lambda, 0.0, 100.0);
     check_range("max_smoothing", max_smoothing, 0.0, 1e9);
+    check_range("open_gap", open_gap, 0.0, 1e3);
   }
 };
 
@@ -50,9 +54,9 @@ class GeodesicVelocity final : public VelocityWith<GeodesicVelocityOptions, Geod
     const double smoothing = std::clamp(options_.lambda * s.distance * s.curvature, -options_.max_smoothing,
                                         options_.max_smoothing);
     const double v = -(s.distance_gradient.dot(s.normal) + smoothing);
-    return s.unsupported ? std::min(v, -1.0) : v;
+    return s.unsupported && s.distance > options_.open_gap * s.spacing ? std::min(v, -1.0) : v;
   }
-  bool wants_support() const override { return options_.open_membranes; }
+  bool wants_support() const override { return options_.open_gap > 0.0; }
 };
 
 /// The paper's velocity (§2.1 with its refs [9], [55]): geodesic active contours on the data distance,
