@@ -10,6 +10,7 @@
 #include "framework/config/yaml_options.hpp"
 #include "framework/config/yaml_path.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/suggest.hpp"
 #include "framework/datasets/dataset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 #include "framework/pipeline/tables.hpp"
@@ -67,7 +68,8 @@ void check_keys(const YAML::Node& map, const std::set<std::string>& allowed, con
     if (!allowed.count(k)) {
       std::string known;
       for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      throw ConfigError((context.empty() ? k : context + "." + k) + ": unknown key; known keys: " + known);
+      throw ConfigError((context.empty() ? k : context + "." + k) + ": unknown key" +
+                        did_you_mean(k, std::vector<std::string>(allowed.begin(), allowed.end())) + "; known keys: " + known);
     }
   }
 }

@@ -8,9 +8,11 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <sstream>
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/suggest.hpp"
 
 namespace dtsl {
 
@@ -190,9 +192,15 @@ std::string describe_columns() {
 void check_columns(const std::vector<std::string>& columns) {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     ColumnDef d;
-    if (!resolve(columns[i], d))
-      throw ConfigError("table.columns[" + std::to_string(i) + "]: unknown column '" + columns[i] +
-                        "'; known: " + describe_columns());
+    if (!resolve(columns[i], d)) {
+      // The fixed names are the words of the description before its per-stage patterns.
+      const std::string text = describe_columns();
+      std::istringstream words(text.substr(0, text.find(", and per stage")));
+      std::vector<std::string> known;
+      for (std::string w; words >> w;) known.push_back(w);
+      throw ConfigError("table.columns[" + std::to_string(i) + "]: unknown column '" + columns[i] + "'" +
+                        did_you_mean(columns[i], known) + "; known: " + text);
+    }
   }
 }
 
