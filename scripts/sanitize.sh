@@ -3,7 +3,7 @@
 # libFuzzer targets briefly, seeded from fuzz/seeds and the robustness corpus (fuzz/README.md).
 #
 #   scripts/sanitize.sh          the fast subset CI runs: the framework's and the T-spline's tests, the
-#                                command line's, the robustness corpus through `dtsl reconstruct
+#                                robustness corpus through `dtsl reconstruct
 #                                --pipeline pcl_poisson` and `dtsl run` (every reader and the config
 #                                loader on every bad file), crash safety, and each fuzz target for 25 s
 #   scripts/sanitize.sh --full   every test executable and the corpus through the method too (about an
@@ -24,10 +24,10 @@ done
 t0=$SECONDS
 step() { echo "== [$((SECONDS - t0)) s] $*"; }
 
-# The fast subset: every library is built (the corpus runs the whole method through `dtsl`), but only
-# these test executables; test_evolution, test_method, test_displacement, test_sharpen and test_render
-# run in the Release suite and under --full.
-quick_tests=(test_core test_io test_datasets test_metrics test_tspline test_cli test_robustness)
+# The fast subset: every library is built (`dtsl` and the experiment fuzzer link them all), but only
+# these test executables; the others (the method's stages, the command line's runs of the method, the
+# baselines, rendering, Python) run in the Release suite and under --full.
+quick_tests=(test_core test_io test_datasets test_metrics test_tspline test_robustness)
 
 step "sanitizer build (clang, -fsanitize=address,undefined, libFuzzer targets)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
