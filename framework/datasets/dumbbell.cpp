@@ -31,7 +31,7 @@ struct DumbbellOptions final : Options {
     check_range("blend", blend, 0.01, 0.5);  // no crease: the surface stays smooth
     check_positive("edge_length", edge_length);
     const double r = neck_radius * ball_radius();
-    require(edge_length <= 0.5 * r, "edge_length",
+    require(edge_length <= 0.5 * r * (1.0 + 1e-9), "edge_length",
             "must be at most half the neck's radius (" + format_number(0.5 * r) + ") so the neck is resolved, got " +
                 format_number(edge_length));
     const double area = 2.0 * 4.0 * M_PI * ball_radius() * ball_radius();

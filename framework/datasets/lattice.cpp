@@ -54,7 +54,7 @@ struct LatticeOptions final : Options {
     check_range("blend", blend, 0.1, 1.0);  // no crease at the joints: the surface stays smooth
     check_positive("edge_length", edge_length);
     const double r = bar_radius * cell();
-    require(edge_length <= 0.5 * r, "edge_length",
+    require(edge_length <= 0.5 * r * (1.0 + 1e-9), "edge_length",
             "must be at most half the bar radius (" + format_number(0.5 * r) + ") so the bars are resolved, got " +
                 format_number(edge_length));
     const double bars = cells[0] * (cells[1] + 1) * (cells[2] + 1) + (cells[0] + 1) * cells[1] * (cells[2] + 1) +

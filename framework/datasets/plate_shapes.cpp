@@ -53,7 +53,7 @@ double plate_area(double width, double thickness, const std::vector<Hole>& holes
 
 void check_edge_length(double edge_length, double thickness, double area) {
   check_positive("edge_length", edge_length);
-  require(edge_length <= 0.25 * thickness, "edge_length",
+  require(edge_length <= 0.25 * thickness * (1.0 + 1e-9), "edge_length",
           "must be at most a quarter of the thickness (" + format_number(0.25 * thickness) +
               ") so the rims are resolved, got " + format_number(edge_length));
   const double vertices = 1.2 * area / (edge_length * edge_length);
