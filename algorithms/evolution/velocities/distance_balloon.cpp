@@ -30,7 +30,7 @@ namespace {
 struct DistanceBalloonOptions final : Options {
   double beta = 0.2;
   double lambda = 0.01;
-  double open_gap = 1.0;
+  double open_gap = 0.0;
 
   void visit(FieldVisitor& v) override {
     v.field("beta", beta,

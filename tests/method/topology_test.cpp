@@ -1,0 +1,90 @@
+// The level set's topology should follow the data: small versions of the shape families of the topology
+// suite (configs/suite_dev.yaml), each through the whole `dtsl` pipeline with its defaults, end with
+// the truth's genus and components; the paper's velocity runs too. Properties, not numbers.
+//
+// The cases tagged [!shouldfail] are what the method does not yet get right (docs/experiments.md, the
+// topology suite): membranes stay over a plate's holes and a lattice's windows, and two spheres a few
+// spacings apart merge, with and without open_gap. Catch2 reports such a case as failed once it
+// passes: then the tag goes.
+#include <catch2/catch.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <iostream>
+
+#include "algorithms/method/dtsl_pipeline.hpp"
+#include "framework/config/yaml_options.hpp"
+#include "framework/datasets/dataset.hpp"
+#include "framework/metrics/metrics.hpp"
+#include "framework/pipeline/reconstructor.hpp"
+
+using namespace dtsl;
+
+namespace {
+
+struct Topology {
+  std::size_t components = 0;
+  double genus = 0.0;
+  bool watertight = false;
+};
+
+/// The final mesh's topology of `dtsl` (with `options`) on the dataset of `yaml`; the dataset's truth too.
+std::pair<Topology, Topology> run(const std::string& yaml, const std::map<std::string, std::string>& options = {}) {
+  register_dataset_plugins();
+  register_dtsl_pipeline();
+  DatasetSpec spec = parse_dataset(YAML::Load(yaml), "test");
+  const Dataset data = build_dataset(spec, 1);
+  auto pipeline = reconstructors().create("dtsl", "pipeline");
+  apply_assignment(pipeline->options(), "sharpen", "false", "test");  // topology is decided before B-Evl
+  for (const auto& [key, value] : options) apply_assignment(pipeline->options(), key, value, "test");
+  const ReconstructionResult r = pipeline->reconstruct(data.points, RunContext{});
+  const MeshStats got = mesh_stats(r.mesh), truth = mesh_stats(*data.ground_truth);
+  std::cout << spec.name << ": " << data.points.size() << " points, components " << got.components << " (truth "
+            << truth.components << "), genus " << got.genus << " (truth " << truth.genus << ")\n";
+  return {{got.components, got.genus, got.watertight}, {truth.components, truth.genus, truth.watertight}};
+}
+
+void check_same_topology(const std::pair<Topology, Topology>& r) {
+  CHECK(r.first.watertight);
+  CHECK(r.first.components == r.second.components);
+  CHECK(r.first.genus == Approx(r.second.genus));
+}
+
+}  // namespace
+
+TEST_CASE("a plate with k round through-holes comes out with genus k", "[topology][!shouldfail]") {
+  check_same_topology(run(R"(
+name: plate2
+shape: {type: plate_holes, hole_diameters: [0.3, 0.2]}
+sampler: {type: area, count: 5000})"));
+}
+
+TEST_CASE("a lattice whose windows are a third of its size keeps its genus", "[topology][!shouldfail]") {
+  check_same_topology(run(R"(
+name: lattice_grid22
+shape: {type: lattice, cells: [2, 2, 0], bar_radius: 0.15}
+sampler: {type: area, count: 6000})"));
+}
+
+TEST_CASE("two spheres a few spacings apart stay two components", "[topology][!shouldfail]") {
+  check_same_topology(run(R"(
+name: two_spheres
+shape: {type: pair, object: sphere, gap: 0.1}
+sampler: {type: area, count: 5000})"));
+}
+
+TEST_CASE("a 40x density ramp stays one component", "[topology]") {
+  check_same_topology(run(R"(
+name: torus_ramp
+shape: torus
+sampler: {type: area, count: 5000, density_ratio: 40, density_axis: x})"));
+}
+
+TEST_CASE("the paper's velocity runs the whole pipeline to a closed mesh", "[topology]") {
+  const auto r = run(R"(
+name: torus_paper
+shape: torus
+sampler: {type: area, count: 3000})",
+                     {{"evolution_velocity", "paper"}, {"evolution_fine_velocity", "paper"}});
+  CHECK(r.first.watertight);
+  CHECK(r.first.components >= 1);
+}
