@@ -109,7 +109,10 @@ example:
 
 void print_overview(std::ostream& out) {
   out << "usage: dtsl COMMAND [ARGS]   (dtsl COMMAND --help for a command's options)\n\ncommands:\n";
-  for (const CommandHelp& c : kCommands) out << "  " << c.name << std::string(13 - std::string(c.name).size(), ' ') << c.summary << "\n";
+  for (const CommandHelp& c : kCommands) {
+    const std::string name = c.name;
+    out << "  " << name << std::string(name.size() < 13 ? 13 - name.size() : 1, ' ') << c.summary << "\n";
+  }
   out << "\n  --version    version, git commit and library versions\n";
 }
 
