@@ -10,18 +10,21 @@
 #include "experiments/cli.hpp"
 #include "experiments/plugins.hpp"
 #include "framework/core/allocator.hpp"
+#include "framework/core/cores.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/suggest.hpp"
 
 namespace {
 
 /// OpenMP's threads wait at barriers by spinning unless OMP_WAIT_POLICY says passive; on a machine
-/// whose other cores are taken, spinning threads steal the time the working ones need (a 3k-point
-/// cloud took 13.6 s with 2 threads against 2.1 s with 1 while another process held a core). The
-/// runtime reads the variable when it is loaded, before main(), so the process starts itself again
-/// with it set. A value the user set is kept.
+/// whose other cores are taken, spinning threads steal the time the working ones need (fandisk, 6000
+/// points, 2 threads while another process held one of 2 cores: 12.8 s spinning, 8.8 s passive, 8.4 s on
+/// one thread). On an idle machine spinning is faster (5.7 s against 6.2 s passive), so the policy is
+/// passive only when some core is busy as dtsl starts. The runtime reads the variable when it is loaded,
+/// before main(), so the process starts itself again with it set. A value the user set is kept.
 void prefer_passive_waiting(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY")) return;
+  if (dtsl::free_cores() >= std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN))) return;
   ::setenv("OMP_WAIT_POLICY", "passive", 1);
   ::execv("/proc/self/exe", argv);  // returns only on failure: then go on as we are
 }
