@@ -104,7 +104,7 @@ int list_command(Args& args) {
     list_kinds();
   } else if (rest[0] == "columns" || rest[0] == "column") {
     if (rest.size() > 1) throw UsageError{"list columns: takes no NAME"};
-    std::cout << describe_columns() << "\n";
+    std::cout << wrapped("", describe_columns(), 0);
   } else if (rest.size() == 1) {
     list_plugins(*find_kind(rest[0]));
   } else {

@@ -8,7 +8,6 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <sstream>
 
 #include "framework/core/atomic_file.hpp"
 #include "framework/core/error.hpp"
@@ -48,6 +47,53 @@ struct ColumnDef {
   std::string header;
   std::function<std::string(const json&)> cell;
 };
+
+/// The columns without an "@": name -> definition.
+const std::map<std::string, ColumnDef>& fixed_columns() {
+  static const std::map<std::string, ColumnDef> fixed = {
+      {"dataset", {"dataset", [](const json& r) { return r.value("dataset", std::string()); }}},
+      {"pipeline", {"pipeline", [](const json& r) { return r.value("pipeline", std::string()); }}},
+      {"type", {"type", [](const json& r) { return r.value("type", std::string()); }}},
+      {"np", {"np", [](const json& r) { return number(at(r, {"np"}), 1, "%.0f"); }}},
+      {"nv", {"nv", [](const json& r) { return number(at(r, {"final", "mesh", "vertices"}), 1, "%.0f"); }}},
+      {"nf", {"nf", [](const json& r) { return number(at(r, {"final", "mesh", "faces"}), 1, "%.0f"); }}},
+      {"e_avr", {"e_avr (1e-3)", [](const json& r) { return number(at(r, {"final", "point_errors", "e_avr"}), 1e3, "%.2f"); }}},
+      {"e_max", {"e_max (1e-3)", [](const json& r) { return number(at(r, {"final", "point_errors", "e_max"}), 1e3, "%.2f"); }}},
+      {"accuracy", {"acc (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "accuracy"}), 1e3, "%.2f"); }}},
+      {"completeness", {"comp (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "completeness"}), 1e3, "%.2f"); }}},
+      {"chamfer", {"chamfer (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "chamfer"}), 1e3, "%.2f"); }}},
+      {"hausdorff", {"hausdorff (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "hausdorff"}), 1e3, "%.1f"); }}},
+      {"nc", {"normal cons.", [](const json& r) { return number(at(r, {"final", "surface", "normal_consistency"}), 1, "%.3f"); }}},
+      {"fscore", {"F-score", [](const json& r) { return number(at(r, {"final", "surface", "fscore"}), 1, "%.3f"); }}},
+      {"watertight", {"watertight", [](const json& r) {
+                        const json* v = at(r, {"final", "mesh", "watertight"});
+                        return v && v->is_boolean() ? (v->get<bool>() ? "yes" : "no") : "–";
+                      }}},
+      {"components", {"comp.", [](const json& r) { return number(at(r, {"final", "mesh", "components"}), 1, "%.0f"); }}},
+      {"genus", {"genus", [](const json& r) { return number(at(r, {"final", "mesh", "genus"}), 1, "%.0f"); }}},
+      {"truth_components", {"truth comp.", [](const json& r) { return number(at(r, {"truth_mesh", "components"}), 1, "%.0f"); }}},
+      {"truth_genus", {"truth genus", [](const json& r) { return number(at(r, {"truth_mesh", "genus"}), 1, "%.0f"); }}},
+      {"topology_ok", {"topology ok", topology_ok}},
+      {"min_angle", {"min angle p1 (deg)", [](const json& r) { return number(at(r, {"final", "mesh", "min_angle_p01_deg"}), 1, "%.1f"); }}},
+      {"valence6", {"valence 6", [](const json& r) { return number(at(r, {"final", "mesh", "valence6_fraction"}), 1, "%.2f"); }}},
+      {"time", {"time (s)", [](const json& r) { return number(at(r, {"time_total"}), 1, "%.2f"); }}},
+      {"memory", {"peak MiB", [](const json& r) { return number(at(r, {"peak_memory_mib"}), 1, "%.0f"); }}},
+      {"normals", {"normals", [](const json& r) {
+                     const json* v = at(r, {"summary", "normals_source"});
+                     return v && v->is_string() ? v->get<std::string>() : std::string("–");
+                   }}},
+      {"status", {"status", [](const json& r) {
+                    std::string s = r.value("status", std::string("?"));
+                    if (s != "ok") {
+                      std::string e = r.value("error", std::string());
+                      if (e.size() > 90) e = e.substr(0, 87) + "...";
+                      s += ": " + e;
+                    }
+                    return s;
+                  }}},
+  };
+  return fixed;
+}
 
 /// A column name -> its definition; "name@X" forms are resolved against stages.
 bool resolve(const std::string& name, ColumnDef& out) {
@@ -116,48 +162,7 @@ bool resolve(const std::string& name, ColumnDef& out) {
     }
     return false;
   }
-  static const std::map<std::string, ColumnDef> fixed = {
-      {"dataset", {"dataset", [](const json& r) { return r.value("dataset", std::string()); }}},
-      {"pipeline", {"pipeline", [](const json& r) { return r.value("pipeline", std::string()); }}},
-      {"type", {"type", [](const json& r) { return r.value("type", std::string()); }}},
-      {"np", {"np", [](const json& r) { return number(at(r, {"np"}), 1, "%.0f"); }}},
-      {"nv", {"nv", [](const json& r) { return number(at(r, {"final", "mesh", "vertices"}), 1, "%.0f"); }}},
-      {"nf", {"nf", [](const json& r) { return number(at(r, {"final", "mesh", "faces"}), 1, "%.0f"); }}},
-      {"e_avr", {"e_avr (1e-3)", [](const json& r) { return number(at(r, {"final", "point_errors", "e_avr"}), 1e3, "%.2f"); }}},
-      {"e_max", {"e_max (1e-3)", [](const json& r) { return number(at(r, {"final", "point_errors", "e_max"}), 1e3, "%.2f"); }}},
-      {"accuracy", {"acc (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "accuracy"}), 1e3, "%.2f"); }}},
-      {"completeness", {"comp (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "completeness"}), 1e3, "%.2f"); }}},
-      {"chamfer", {"chamfer (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "chamfer"}), 1e3, "%.2f"); }}},
-      {"hausdorff", {"hausdorff (1e-3)", [](const json& r) { return number(at(r, {"final", "surface", "hausdorff"}), 1e3, "%.1f"); }}},
-      {"nc", {"normal cons.", [](const json& r) { return number(at(r, {"final", "surface", "normal_consistency"}), 1, "%.3f"); }}},
-      {"fscore", {"F-score", [](const json& r) { return number(at(r, {"final", "surface", "fscore"}), 1, "%.3f"); }}},
-      {"watertight", {"watertight", [](const json& r) {
-                        const json* v = at(r, {"final", "mesh", "watertight"});
-                        return v && v->is_boolean() ? (v->get<bool>() ? "yes" : "no") : "–";
-                      }}},
-      {"components", {"comp.", [](const json& r) { return number(at(r, {"final", "mesh", "components"}), 1, "%.0f"); }}},
-      {"genus", {"genus", [](const json& r) { return number(at(r, {"final", "mesh", "genus"}), 1, "%.0f"); }}},
-      {"truth_components", {"truth comp.", [](const json& r) { return number(at(r, {"truth_mesh", "components"}), 1, "%.0f"); }}},
-      {"truth_genus", {"truth genus", [](const json& r) { return number(at(r, {"truth_mesh", "genus"}), 1, "%.0f"); }}},
-      {"topology_ok", {"topology ok", topology_ok}},
-      {"min_angle", {"min angle p1 (deg)", [](const json& r) { return number(at(r, {"final", "mesh", "min_angle_p01_deg"}), 1, "%.1f"); }}},
-      {"valence6", {"valence 6", [](const json& r) { return number(at(r, {"final", "mesh", "valence6_fraction"}), 1, "%.2f"); }}},
-      {"time", {"time (s)", [](const json& r) { return number(at(r, {"time_total"}), 1, "%.2f"); }}},
-      {"memory", {"peak MiB", [](const json& r) { return number(at(r, {"peak_memory_mib"}), 1, "%.0f"); }}},
-      {"normals", {"normals", [](const json& r) {
-                     const json* v = at(r, {"summary", "normals_source"});
-                     return v && v->is_string() ? v->get<std::string>() : std::string("–");
-                   }}},
-      {"status", {"status", [](const json& r) {
-                    std::string s = r.value("status", std::string("?"));
-                    if (s != "ok") {
-                      std::string e = r.value("error", std::string());
-                      if (e.size() > 90) e = e.substr(0, 87) + "...";
-                      s += ": " + e;
-                    }
-                    return s;
-                  }}},
-  };
+  const std::map<std::string, ColumnDef>& fixed = fixed_columns();
   auto it = fixed.find(name);
   if (it == fixed.end()) return false;
   out = it->second;
@@ -181,9 +186,10 @@ std::vector<std::string> default_columns() {
 }
 
 std::string describe_columns() {
-  return "dataset pipeline type np nv nf e_avr e_max accuracy completeness chamfer hausdorff nc fscore "
-         "watertight components genus truth_components truth_genus topology_ok min_angle valence6 time memory "
-         "normals status, and per stage: "
+  std::string names;
+  for (const auto& [name, def] : fixed_columns()) names += name + " ";
+  return names +
+         "and per stage: "
          "e_avr@LABEL e_max@LABEL nv@LABEL (stage mesh label, e.g. MI MD MS), chamfer@LABEL accuracy@LABEL "
          "completeness@LABEL (with metrics.stage_surfaces), time@STAGE, stage@STAGE.KEY (a value of the stage's "
          "summary, nested keys joined by '.', e.g. stage@B-Evl.iterations), summary@KEY";
@@ -193,13 +199,10 @@ void check_columns(const std::vector<std::string>& columns) {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     ColumnDef d;
     if (!resolve(columns[i], d)) {
-      // The fixed names are the words of the description before its per-stage patterns.
-      const std::string text = describe_columns();
-      std::istringstream words(text.substr(0, text.find(", and per stage")));
       std::vector<std::string> known;
-      for (std::string w; words >> w;) known.push_back(w);
+      for (const auto& [name, def] : fixed_columns()) known.push_back(name);
       throw ConfigError("table.columns[" + std::to_string(i) + "]: unknown column '" + columns[i] + "'" +
-                        did_you_mean(columns[i], known) + "; known: " + text);
+                        did_you_mean(columns[i], known) + "; known: " + describe_columns());
     }
   }
 }
