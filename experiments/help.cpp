@@ -25,7 +25,9 @@ readable with enough points, OUT's folder writable and its extension known, the 
 
 options:
   --pipeline NAME     the reconstructor (default dtsl; `dtsl list pipeline` shows all)
-  --set KEY=VALUE     a pipeline option (repeatable; `dtsl list pipeline NAME` shows them)
+  --preset NAME       the pipeline's option values to start from (default: default; dtsl also has
+                      paper, the method as published; `dtsl list preset` shows them)
+  --set KEY=VALUE     a pipeline option over the preset (repeatable; `dtsl list pipeline NAME`)
   --stages DIR        also write every stage's mesh into DIR (stage_MI.ply, ...)
   --metrics FILE      write timings, counts and errors as JSON (with --truth: against the truth)
   --truth MESH        a ground-truth mesh in IN's units, measured against in --metrics
@@ -50,6 +52,8 @@ options:
   --results DIR       the results root (default results)
   --run-id ID         the result folder's name (default: a hash of the resolved config)
   --shard i/N         only runs k with k mod N = i-1 (a Slurm array task; `dtsl merge` joins them)
+  --normalised        write points, truths and meshes in the [-1,1]^3 frame the errors are measured in
+                      (the config's files_frame: normalised); default: in the input's units
   --dry-run           list the runs and the result directory; write nothing
   --quiet             no progress on stderr
 

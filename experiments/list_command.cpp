@@ -7,6 +7,8 @@
 #include "experiments/cli.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/suggest.hpp"
+#include "framework/pipeline/preset.hpp"
+#include "framework/pipeline/reconstructor.hpp"
 #include "framework/pipeline/tables.hpp"
 #include "framework/registry/registry.hpp"
 
@@ -48,8 +50,10 @@ const RegistryBase* find_kind(const std::string& name) {
   }
   std::string known;
   for (const std::string& k : kinds) known += (known.empty() ? "" : ", ") + k;
+  kinds.push_back("columns");
+  kinds.push_back("preset");
   throw UsageError{"list: unknown kind '" + name + "'" + did_you_mean(name, kinds) + "; known: " + known +
-                   ", columns"};
+                   ", preset, columns"};
 }
 
 void list_kinds() {
@@ -59,8 +63,16 @@ void list_kinds() {
     const std::string head = plural(r->kind()) + ":";
     std::cout << wrapped(head + std::string(std::max<std::size_t>(head.size() + 1, 16) - head.size(), ' '), names, 16);
   }
+  std::string with_presets;
+  for (const auto& l : reconstructors().listings())
+    if (presets(l.name).size() > 1) {
+      std::string names;
+      for (const Preset& p : presets(l.name)) names += (names.empty() ? "" : ", ") + p.name;
+      with_presets += (with_presets.empty() ? "" : "; ") + l.name + ": " + names;
+    }
+  std::cout << wrapped("presets:        ", with_presets + " (every pipeline has default)", 16);
   std::cout << "\n`dtsl list KIND` describes each plugin of a kind, `dtsl list KIND NAME` its options,\n"
-               "`dtsl list columns` the table columns.\n";
+               "`dtsl list preset NAME` a preset's values, `dtsl list columns` the table columns.\n";
 }
 
 void list_plugins(const RegistryBase& registry) {
@@ -95,6 +107,34 @@ void list_options(const RegistryBase& registry, const std::string& name) {
                    " (`dtsl list " + registry.kind() + "` lists them)"};
 }
 
+/// The presets of every pipeline that has more than `default`.
+void list_presets() {
+  for (const auto& l : reconstructors().listings())
+    for (const Preset& p : presets(l.name))
+      if (presets(l.name).size() > 1)
+        std::cout << wrapped("  " + l.name + " " + p.name + ": ",
+                             p.description + " (" + std::to_string(p.values.size()) + " values)", 6);
+  std::cout << "\nEvery pipeline has `default` (its options' defaults). `dtsl list preset NAME` shows a preset's "
+               "values;\nselect one with `preset:` in a config's pipeline entry or `--preset` in `dtsl reconstruct`.\n";
+}
+
+void list_preset(const std::string& name) {
+  std::vector<std::string> names;
+  bool found = false;
+  for (const auto& l : reconstructors().listings())
+    for (const Preset& p : presets(l.name)) {
+      names.push_back(p.name);
+      if (p.name != name || (p.values.empty() && presets(l.name).size() == 1)) continue;
+      found = true;
+      std::cout << wrapped(l.name + " " + p.name + ": ", p.description, 4);
+      if (p.values.empty()) std::cout << "  the defaults of `dtsl list pipeline " << l.name << "`\n";
+      for (const PresetValue& v : p.values) std::cout << wrapped("  " + v.key + " = " + v.value + "  ", v.source, 6);
+      std::cout << "\n";
+    }
+  if (!found)
+    throw UsageError{"list: unknown preset '" + name + "'" + did_you_mean(name, names) + " (`dtsl list preset` lists them)"};
+}
+
 }  // namespace
 
 int list_command(Args& args) {
@@ -105,6 +145,9 @@ int list_command(Args& args) {
   } else if (rest[0] == "columns" || rest[0] == "column") {
     if (rest.size() > 1) throw UsageError{"list columns: takes no NAME"};
     std::cout << wrapped("", describe_columns(), 0);
+  } else if (rest[0] == "preset" || rest[0] == "presets") {
+    if (rest.size() == 1) list_presets();
+    else list_preset(rest[1]);
   } else if (rest.size() == 1) {
     list_plugins(*find_kind(rest[0]));
   } else {

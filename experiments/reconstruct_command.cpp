@@ -20,6 +20,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
 #include "framework/io/io.hpp"
+#include "framework/pipeline/preset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 #include "framework/pipeline/run_one.hpp"
 
@@ -113,6 +114,7 @@ class StageProgress {
 
 int reconstruct_command(Args& args) {
   const std::string name = args.value("pipeline", kDefaultPipeline);
+  const std::string preset = args.value("preset", "default");
   const std::vector<std::string> sets = args.values("set");
   const std::string stages_dir = args.value("stages");
   const std::string metrics_file = args.value("metrics");
@@ -144,6 +146,7 @@ int reconstruct_command(Args& args) {
   const int threads = threads_text.empty() ? free_cores() : Args::integer("threads", threads_text, 1, 1024);
 
   auto pipeline = reconstructors().create(name, "--pipeline");
+  apply_preset(*pipeline, name, preset, "--preset");
   for (const std::string& s : sets) {
     const auto [key, value] = split_assignment(s);
     apply_assignment(pipeline->options(), key, value, "--set");
@@ -173,11 +176,12 @@ int reconstruct_command(Args& args) {
 
   nlohmann::json record;
   if (!metrics_file.empty()) {
-    Dataset data{in, cloud, truth, nlohmann::json::object()};
+    Dataset data{in, cloud, truth, nlohmann::json::object(), frame};
     const MetricsOptions metrics;
     record = {{"input", in},
               {"points", cloud.size()},
               {"pipeline", name},
+              {"preset", preset},
               {"options", to_json(pipeline->options())},
               {"threads", threads},
               {"time_total", seconds},
@@ -195,16 +199,7 @@ int reconstruct_command(Args& args) {
     record["final"] = measure_mesh(result.mesh, data, truth ? &metrics : nullptr, 1);
   }
 
-  if (!normalised) {
-    const Similarity back{-frame.center * frame.scale, 1.0 / frame.scale};  // y -> y / scale + center
-    transform(result.mesh, back);
-    for (StageRecord& s : result.stages) {
-      if (s.mesh) transform(*s.mesh, back);
-      if (s.lines)
-        for (auto& segment : s.lines->segments)
-          for (Vec3& p : segment) p = frame.invert(p);
-    }
-  }
+  if (!normalised) transform(result, frame.inverse());
   if (!stages_dir.empty()) {
     fs::create_directories(stages_dir);
     const nlohmann::json files = write_stage_files(result, stages_dir);

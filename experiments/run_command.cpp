@@ -13,7 +13,9 @@ namespace dtsl::cli {
 
 int run_command(Args& args, const std::vector<std::string>& command_line) {
   RunnerOptions options;
-  const std::vector<std::string> overrides = args.values("set");
+  std::vector<std::string> overrides = args.values("set");
+  // The same switch as reconstruct's: the experiment's files in the [-1,1]^3 frame.
+  if (args.flag("normalised")) overrides.push_back("files_frame=normalised");
   const std::string jobs = args.value("jobs", "1");
   const std::string threads = args.value("threads");
   options.results_root = args.value("results", "results");

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "framework/io/io.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "framework/pipeline/experiment.hpp"
+#include "framework/pipeline/preset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 #include "framework/pipeline/runner.hpp"
 
@@ -248,9 +250,10 @@ std::unique_ptr<Reconstructor> make_pipeline(const std::string& name) {
 
 /// `threads` and `seed` set the RunContext; every other keyword is an option (no pipeline has an option of
 /// those two names: python/tests/test_dtsl.py checks every registered one).
-py::tuple reconstruct(py::handle points, const std::string& pipeline_name, int threads, std::int64_t seed,
-                      const py::kwargs& kwargs) {
+py::tuple reconstruct(py::handle points, const std::string& pipeline_name, const std::optional<std::string>& preset,
+                      int threads, std::int64_t seed, const py::kwargs& kwargs) {
   auto pipeline = make_pipeline(pipeline_name);
+  apply_preset(*pipeline, pipeline_name, preset.value_or("default"), "preset");
   apply_options(pipeline->options(), kwargs);
   if (threads < 1) throw py::value_error("threads: expected at least 1, got " + std::to_string(threads));
   const std::uint64_t context_seed = checked_seed(seed);
@@ -286,6 +289,7 @@ py::tuple reconstruct(py::handle points, const std::string& pipeline_name, int t
   }
   py::dict summary;
   summary["pipeline"] = pipeline_name;
+  summary["preset"] = preset.value_or("default");
   summary["options"] = to_python(to_json(pipeline->options()));
   summary["points"] = cloud.size();
   summary["vertices"] = result.mesh.vertices.size();
@@ -362,21 +366,38 @@ PYBIND11_MODULE(dtsl, m) {
   m.doc() = "Surface reconstruction from unorganised points with displaced T-spline level sets (dtsl).";
   m.attr("__version__") = DTSL_VERSION;
 
-  m.def("pipelines", &pipelines, "Names of the registered reconstruction pipelines (`dtsl list reconstructor`).");
+  m.def("pipelines", &pipelines, "Names of the registered reconstruction pipelines (`dtsl list pipeline`).");
+
+  m.def(
+      "presets",
+      [](const std::string& name) {
+        make_pipeline(name);  // an unknown pipeline is a ConfigError, not an empty answer
+        py::dict out;
+        for (const Preset& p : presets(name)) {
+          py::dict values;
+          for (const PresetValue& v : p.values) values[py::str(v.key)] = v.value;
+          out[py::str(p.name)] = py::dict(py::arg("description") = p.description, py::arg("values") = values);
+        }
+        return out;
+      },
+      py::arg("pipeline") = "dtsl",
+      "The presets of a pipeline (`dtsl list preset`): {name: {description, values: {option: value text}}}; "
+      "every pipeline has 'default'.");
 
   m.def(
       "pipeline_options",
       [](const std::string& name) { return to_python(to_json(make_pipeline(name)->options())); },
       py::arg("pipeline"),
-      "The options of a pipeline with their default values, as a dict (`dtsl list reconstructor NAME`).");
+      "The options of a pipeline with their default values, as a dict (`dtsl list pipeline NAME`).");
 
   m.def("reconstruct", &reconstruct, py::arg("points"), py::arg("pipeline") = "dtsl", py::kw_only(),
-        py::arg("threads") = 1, py::arg("seed") = 1,
+        py::arg("preset") = py::none(), py::arg("threads") = 1, py::arg("seed") = 1,
         R"(Reconstructs a mesh from an (n, 3) array of points, as `dtsl reconstruct` does.
 
 The points are mapped into [-1, 1]^3, reconstructed, and the mesh is mapped back: the vertices are in
-the input's units. Every other keyword is an option of the pipeline (see pipeline_options(pipeline)),
-checked as `--set KEY=VALUE` is: bool, int, float, str or a list of numbers. `threads` (threads of the
+the input's units. `preset` names the option values to start from (None: 'default'; presets(pipeline)
+lists them, e.g. dtsl's 'paper'). Every other keyword is an option of the pipeline over the preset (see
+pipeline_options(pipeline)), checked as `--set KEY=VALUE` is: bool, int, float, str or a list of numbers. `threads` (threads of the
 baselines' PCL stages) and `seed` go to the run context. Pipelines that need normals estimate them.
 
 Returns (vertices, faces, summary): an (m, 3) float64 array, a (k, 3) int64 array and a dict with the

@@ -41,30 +41,41 @@
 
 namespace dtsl {
 
-/// Every parameter of the level-set stage. The chosen velocity's and solver's own options, the T-mesh
-/// options, the coarse-to-fine rounds' and the final refinement's are visited with the prefixes
-/// velocity_, solver_, tmesh_, fine_ and refine_ (e.g. `velocity: geodesic` then `velocity_lambda: 0.5`, `tmesh_max_depth: 5`), so one flat
-/// YAML map configures the stage. A value type: copies clone the plugins.
+/// Every parameter of the level-set stage. Configs set only the few that are options (visit(): the
+/// velocities with their own options under velocity_ and fine_velocity_, the solver, tmesh_max_depth,
+/// fine_levels, final_refinement, max_points); the other fields are constants of the method, kept here
+/// so that tests and the ablation benches can vary them. A value type: copies clone the plugins.
 struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
   std::string fine_velocity;
   std::string solver = "eigen_cg";
+  /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data
+  /// about 2x closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus).
   double w_distance = 1.0;
-  double w_smooth = 1e-3;
-  std::string smoothness = "tikhonov";
-  double cfl = 0.5;
+  double w_smooth = 1e-3;                ///< weight w_S of the smoothness term c'^T R c' (docs/design.md)
+  std::string smoothness = "tikhonov";   ///< R = I ('first_order': graph Laplacian of the T-mesh edges)
+  double cfl = 0.5;                      ///< a step moves the zero set by at most cfl x the cell size
+  /// 'local': dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j (big steps through coarse empty space);
+  /// 'finest': dt = cfl h_min / max|v| (docs/design.md).
   std::string cfl_cell = "local";
-  double max_time_step = 0.5;
-  int max_iterations = 200;
-  double velocity_tolerance = 1e-3;
+  double max_time_step = 0.5;            ///< velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate
+  int max_iterations = 200;              ///< iteration cap of the evolution
+  double velocity_tolerance = 1e-3;      ///< at rest when the mean |v| on the zero set falls below this
+  /// The distance between data and level set (mean both ways) counts as decreasing if it falls by this
+  /// fraction; `patience` steps without that stop the evolution.
   double distance_tolerance = 1e-3;
   int patience = 3;
-  int subdivision = 2;
-  int band_subdivision = 2;
-  double band_width = 2.0;
+  int subdivision = 2;        ///< zero-set samples: centres of s^3 sub-cells of every leaf, projected onto f = 0
+  int band_subdivision = 2;   ///< distance-field band samples: centres of b^3 sub-cells of every leaf
+  double band_width = 2.0;    ///< band |f| / |grad f| < band_width x the leaf side (docs/design.md: 2 h_min)
+  /// |kappa| is capped at curvature_clamp / leaf side: the T-mesh cannot carry finer curvature.
   double curvature_clamp = 2.0;
+  /// No nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign, at least this
+  /// fraction of its cell size from zero (ours; 0 disables).
   double sign_guard = 0.25;
-  double initial_radius_factor = 1.1;
+  double initial_radius_factor = 1.1;  ///< initial sphere radius over the data's largest distance from the box centre
+  /// The initial sphere is clipped to the data's box grown by this, so that it starts inside the T-mesh's
+  /// domain (ours; <= 0: the sphere alone).
   double initial_box_margin = 0.1;
   bool final_refinement = true;
   int max_points = 30000;

@@ -100,49 +100,24 @@ const LevelSetSolver& EvolutionOptions::solver_plugin() const {
   return *solver_plugin_;
 }
 
+// The options a user chooses between (each with a trade-off the suite or the paper shows); every other
+// field of EvolutionOptions and of its parts is a constant of the method, documented where it is declared
+// (evolution.hpp, octree.hpp, coarse_to_fine.hpp, final_refinement.hpp) and not read from configs.
 void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("velocity", velocity, "normal velocity plugin: geodesic, distance_balloon, distance or paper (its options: velocity_*)");
   v.field("fine_velocity", fine_velocity,
           "velocity of the coarse-to-fine rounds (its options: fine_velocity_*; ours); empty: `velocity`. The "
           "first evolution approaches the data from the enclosing sphere, the rounds start near it");
   v.field("solver", solver,
-          "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (its options: solver_*); "
-          "default eigen_cg: warm-started from the last c' it was the fastest in bench/phase1_bench.cpp");
-  v.field("w_distance", w_distance,
-          "weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data ~2x "
-          "closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus: measured)");
-  v.field("w_smooth", w_smooth, "weight w_S of the smoothness term c'^T R c' (docs/design.md: 1e-3)");
-  v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (graph Laplacian of the T-mesh edges)");
-  v.field("cfl", cfl, "CFL factor: a step moves the zero set by at most cfl x the cell size (docs/design.md: 0.5)");
-  v.field("cfl_cell", cfl_cell,
-          "cell size of the CFL rule: 'finest' (dt = cfl h_min / max|v|, docs/design.md) or 'local' "
-          "(dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j: big steps through coarse empty space)");
-  v.field("max_time_step", max_time_step,
-          "cap on dt (pseudo-time); velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate");
-  v.field("max_iterations", max_iterations, "iteration cap of the evolution");
-  v.field("velocity_tolerance", velocity_tolerance, "at rest when the mean |v| on the zero set falls below this");
-  v.field("distance_tolerance", distance_tolerance,
-          "the distance between data and level set (mean data-to-level-set + mean level-set-to-data) counts "
-          "as decreasing if it falls by this fraction");
-  v.field("patience", patience, "stop after this many steps without that distance decreasing");
-  v.field("subdivision", subdivision,
-          "zero-set samples x_j: centres of s^3 sub-cells of every leaf, projected onto f = 0 (s = 1 lets "
-          "bumps grow between the samples)");
-  v.field("band_subdivision", band_subdivision, "distance-field band samples y_m: centres of b^3 sub-cells of every leaf");
-  v.field("band_width", band_width,
-          "distance-field band: |f| / |grad f| < band_width x the leaf side (docs/design.md: 2 h_min)");
-  v.field("curvature_clamp", curvature_clamp,
-          "|kappa| is capped at curvature_clamp / leaf side: the T-mesh cannot carry finer curvature, and "
-          "near a critical point of f kappa blows up");
-  v.field("sign_guard", sign_guard,
-          "no nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign and stays at "
-          "least this fraction of its cell size from zero; 0 disables");
-  v.field("initial_radius_factor", initial_radius_factor,
-          "initial sphere radius = this x the largest distance of a point from the bbox centre (docs/design.md: 1.1)");
-  v.field("initial_box_margin", initial_box_margin,
-          "the initial sphere is clipped to the data's box grown by this on every side, so that it starts "
-          "inside the T-mesh's domain (ours; <= 0: the sphere alone)");
-  v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution ([55])");
+          "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (same meshes, different times: "
+          "configs/ablation_evolution_solver.yaml)");
+  v.field("tmesh_max_depth", tmesh.max_depth,
+          "finest octree level of the T-mesh; cells per axis there = 2^max_depth (paper §2.1: <= 6): detail "
+          "against time and memory");
+  v.field("fine_levels", fine.levels,
+          "refine-and-evolve rounds after the first evolution, one octree level each (ours; capped at "
+          "tmesh_max_depth); 0: one evolution on the initial T-mesh, as the paper");
+  v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution (paper §2.1, [55])");
   v.field("max_points", max_points,
           "the level-set stage uses at most this many data points: the first few of every finest T-mesh cell "
           "(thin_points.hpp: sparse cells keep all theirs; displacement and sharpening use all points); 0: all");
@@ -153,14 +128,6 @@ void EvolutionOptions::visit(FieldVisitor& v) {
     PrefixedVisitor fine_velocity_fields(v, "fine_velocity_");
     fine_velocity_plugin_->options().visit(fine_velocity_fields);
   }
-  PrefixedVisitor solver_fields(v, "solver_");
-  solver_plugin_->options().visit(solver_fields);
-  PrefixedVisitor tmesh_fields(v, "tmesh_");
-  tmesh.visit(tmesh_fields);
-  PrefixedVisitor fine_fields(v, "fine_");
-  fine.visit(fine_fields);
-  PrefixedVisitor refine_fields(v, "refine_");
-  refinement.visit(refine_fields);
 }
 
 void EvolutionOptions::check() const {

@@ -5,6 +5,7 @@
 #include "algorithms/displacement/displacement.hpp"
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/evolution.hpp"
+#include "algorithms/method/dtsl_presets.hpp"
 #include "algorithms/method/refinement_guard.hpp"
 #include "algorithms/method/stage_checks.hpp"
 #include "algorithms/method/tmesh_lines.hpp"
@@ -27,13 +28,18 @@ constexpr int kMaxStepHalvings = 3;
 struct DtslOptions final : Options {
   EvolutionOptions evolution;
   std::string polygonizer = "marching_triangulation";
+  /// When the polygonizer fails even at the halved steps (marching triangulation on a part thinner than its
+  /// step), mesh with this one at the first step instead, and say so in the MT record ('none': fail).
   std::string polygonizer_fallback = "marching_cubes";
   double step_factor = 0.2;  // delta = step_factor x l_T (paper §2.2: 0.2)
+  /// Lower bound of delta, 1/500 of the [-1,1] box's side: keeps the initial mesh's size bounded.
   double min_step = 0.004;
   bool displacement = true;
   DisplacementOptions displace;
   int flip_refinements = 2;
   bool refinement_guard = true;
+  /// Marching-cubes step of the mesh of the level set halfway through the evolution (stage mesh 'LS', the
+  /// paper's Fig. 1(b), for figures; not timed), 3/200 of the box's side; 0: none.
   double midway_step = 0.03;
   bool sharpen = true;
   sharpen::BilateralEvolutionOptions bilateral;
@@ -53,12 +59,8 @@ struct DtslOptions final : Options {
     PrefixedVisitor e(v, "evolution_");
     evolution.visit(e);
     v.field("polygonizer", polygonizer, "initial mesh: marching_triangulation (paper §2.2) or marching_cubes");
-    v.field("polygonizer_fallback", polygonizer_fallback,
-            "when the polygonizer fails even at the halved steps (marching triangulation on a part thinner than "
-            "its step), mesh with this one at the first step instead, and say so in the MT record; 'none': fail");
     v.field("step_factor", step_factor,
             "marching step delta = step_factor x l_T, l_T the diameter of the finest T-mesh cells (paper: 0.2)");
-    v.field("min_step", min_step, "lower bound of delta (frame units): keeps the initial mesh's size bounded");
     v.field("refinement_guard", refinement_guard,
             "keep the final refinement's fit only where it adds no components or handles to the evolved zero set "
             "(refinement_guard.hpp: a fit across a part thinner than two cells severs it); else scale it back "
@@ -66,9 +68,6 @@ struct DtslOptions final : Options {
     v.field("displacement", displacement, "run Phase 2, the displacement mapping (paper §3); false: MD = MI");
     PrefixedVisitor d(v, "displace_");
     displace.visit(d);
-    v.field("midway_step", midway_step,
-            "marching-cubes step of the mesh of the level set halfway through the evolution (stage mesh 'LS', "
-            "the paper's Fig. 1(b), for figures; not timed); 0: none");
     v.field("flip_refinements", flip_refinements,
             "paper §3.2: when displacement flips triangles, refine the level set one level near the flips "
             "(final refinement with the flips as focus), re-triangulate and displace again, at most this many "
@@ -343,6 +342,7 @@ void register_dtsl_pipeline() {
   sharpen::register_sharpen_solvers();
   reconstructors().add("dtsl", "the paper's method: T-spline level set, marching triangulation, displacement, bilateral evolution",
                        [] { return std::make_unique<DtslPipeline>(); });
+  register_dtsl_presets();
 }
 
 }  // namespace dtsl

@@ -6,33 +6,31 @@
 #include "algorithms/sharpen/bilateral_target.hpp"
 #include "algorithms/sharpen/foot_points.hpp"
 #include "algorithms/sharpen/mesh_adjacency.hpp"
-#include "framework/config/prefixed_visitor.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
+#include "framework/config/prefixed_visitor.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
 
 namespace dtsl::sharpen {
 
+// The options a user chooses between: the paper's filter width and stopping rule (§4.3) and which
+// vertices count as sharp. delta is the marching step the pipeline hands over; every other field is a
+// constant of the method (bilateral_evolution.hpp, sharp_vertices.hpp, degenerate_removal.hpp).
 void BilateralEvolutionOptions::visit(FieldVisitor& v) {
-  v.field("delta", delta, "marching step length delta_t of the initial mesh (frame units); sigmas derive from it");
-  v.field("sigma_factor", sigma_factor, "sigma_c = sigma_s = sigma_factor x delta (paper §4.3: 2)");
-  v.field("support_factor", support_factor, "N(v) of Eq. 8: triangles whose centroid is within this x sigma_c");
-  v.field("bilateral_weight", bilateral_weight, "w of Eq. 4: weight of E_bila against E_dist");
-  v.field("time_step", time_step, "dtau of the explicit Euler step V <- V + dtau V'");
-  v.field("max_iterations", max_iterations, "iteration cap (paper: usually within 10)");
+  v.field("sigma_factor", sigma_factor, "sigma_c = sigma_s = sigma_factor x delta_t, the marching step (paper §4.3: 2)");
+  v.field("max_iterations", max_iterations, "iteration cap (paper §4.3: usually within 10)");
   v.field("min_relative_decrease", min_relative_decrease,
           "an iteration whose e_avr falls by less than this fraction is slow; `patience` slow ones in a row stop "
-          "the evolution (a rise always does; the best mesh is kept)");
+          "the evolution (a rise always does, the paper's rule; the best mesh is kept)");
   v.field("patience", patience,
           "slow iterations in a row that stop the evolution (1: the first); the slow steps before the last are "
           "taken, since each still lowers e_avr");
-  v.field("redetect", redetect, "detect sharp vertices again on each iteration's mesh (else once)");
-  v.field("snap", snap, "barycentric coordinates below this count as zero (foot-point cases of Fig. 2)");
   v.field("solver", solver, "linear least-squares solver plugin: eigen_ldlt or ceres");
-  PrefixedVisitor s(v, "sharp_");
-  sharp.visit(s);
-  PrefixedVisitor d(v, "degenerate_");
-  degenerate.visit(d);
+  v.field("sharp_dihedral_angle_deg", sharp.dihedral_angle_deg,
+          "one-ring dihedral angle (deg) above which a vertex is a potential sharp vertex (ref [53])");
+  v.field("sharp_normal_variation_deg", sharp.normal_variation_deg,
+          "angle (deg) between the vertex normal and a nearby triangle's normal above which a vertex is also "
+          "potentially sharp (rounded edges of a displaced mesh; ours); 0 turns it off");
 }
 
 void BilateralEvolutionOptions::check() const {

@@ -58,6 +58,10 @@ struct Similarity {
 
   Vec3 apply(const Vec3& x) const { return scale * (x - center); }
   Vec3 invert(const Vec3& y) const { return y / scale + center; }
+  /// The map back: inverse().apply(apply(x)) == x.
+  Similarity inverse() const { return {-center * scale, 1.0 / scale}; }
+  /// This map followed by `next`: then(next).apply(x) == next.apply(apply(x)).
+  Similarity then(const Similarity& next) const { return {center + next.center / scale, scale * next.scale}; }
 };
 
 /// The similarity that maps the box of `points` into [-1,1]^3. Throws AlgorithmError (naming `what`)

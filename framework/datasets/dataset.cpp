@@ -83,10 +83,6 @@ int parse_int(const YAML::Node& n, const std::string& key) {
   return static_cast<int>(v);
 }
 
-nlohmann::json to_json(const Similarity& s) {
-  return {{"center", {s.center.x(), s.center.y(), s.center.z()}}, {"scale", s.scale}};
-}
-
 /// The vertices a shape's box should be taken from: those of some face (a stray vertex far away would
 /// otherwise shrink the shape), or all of them for a mesh without faces.
 std::vector<Vec3> surface_vertices(const TriangleMesh& mesh) {
@@ -99,6 +95,10 @@ std::vector<Vec3> surface_vertices(const TriangleMesh& mesh) {
 }
 
 }  // namespace
+
+nlohmann::json to_json(const Similarity& s) {
+  return {{"center", {s.center.x(), s.center.y(), s.center.z()}}, {"scale", s.scale}};
+}
 
 DatasetSpec parse_dataset(const YAML::Node& node, const std::string& context) {
   register_dataset_plugins();
@@ -231,13 +231,16 @@ Dataset build_dataset(DatasetSpec& spec, std::uint64_t seed) {
 
   d["points"] = cloud.size();
   d["normals"] = cloud.has_normals() ? "ground_truth" : "none";
-  d["normalisation"] = {{"shape", to_json(to_shape_frame)}, {"points", to_json(to_points_frame)}};
+  const Similarity normalisation = to_shape_frame.then(to_points_frame);
+  d["normalisation"] = {{"shape", to_json(to_shape_frame)}, {"points", to_json(to_points_frame)},
+                        {"input_to_points", to_json(normalisation)}};
 
   Dataset out;
   out.name = spec.name;
   out.points = std::move(cloud);
   out.ground_truth = std::move(shape.mesh);
   out.description = std::move(d);
+  out.normalisation = normalisation;
   return out;
 }
 

@@ -93,7 +93,17 @@ struct Dataset {
   PointCloud points;  ///< in [-1,1]^3; normals the ground truth's where known (outliers: random unit)
   std::optional<TriangleMesh> ground_truth;  ///< in the same frame
   nlohmann::json description;                ///< shape, sampler, corruptions with their options; counts; seed
+  /// The map from the input's units (the model file's, or a synthetic shape's own) into the frame of
+  /// `points` and `ground_truth`: what meshes are mapped back with to be written in the input's units.
+  Similarity normalisation;
 };
+
+/// Where an experiment's files (dataset points and truth, every mesh and line set of its runs) are:
+/// in the input's units (the model file's), or in the [-1,1]^3 frame the methods work and are measured in.
+enum class FilesFrame { input, normalised };
+
+/// {"center": [x, y, z], "scale": s}, as dataset descriptions record normalisations.
+nlohmann::json to_json(const Similarity& s);
 
 /// Loads, normalises the shape into [-1,1]^3, samples, corrupts, then normalises points and ground
 /// truth together by the points' box. Deterministic (for a given standard library, whose random

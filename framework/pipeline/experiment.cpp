@@ -12,6 +12,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/suggest.hpp"
 #include "framework/datasets/dataset.hpp"
+#include "framework/pipeline/preset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 #include "framework/pipeline/tables.hpp"
 
@@ -33,7 +34,7 @@ void MetricsOptions::check() const {
 namespace {
 
 const std::set<std::string> kTopLevelKeys = {"experiment", "description", "seed",  "timeout_seconds", "metrics",
-                                             "datasets",   "pipelines",   "sweep", "table"};
+                                             "files_frame", "datasets",   "pipelines",   "sweep", "table"};
 
 bool valid_name(const std::string& s) {
   if (s.empty() || s.size() > 80) return false;
@@ -74,15 +75,17 @@ void check_keys(const YAML::Node& map, const std::set<std::string>& allowed, con
   }
 }
 
-/// Validates a pipeline entry {name, type, options}; returns its label.
+/// Validates a pipeline entry {name, type, preset, options}; returns its label.
 std::string validate_pipeline(const YAML::Node& p, const std::string& context) {
-  if (!p.IsMap()) throw ConfigError(context + ": expected a map with 'type' (and optional 'name', 'options')");
-  check_keys(p, {"name", "type", "options"}, context);
+  if (!p.IsMap())
+    throw ConfigError(context + ": expected a map with 'type' (and optional 'name', 'preset', 'options')");
+  check_keys(p, {"name", "type", "preset", "options"}, context);
   if (!p["type"]) throw ConfigError(context + ".type: missing (one of the registered pipelines; see `dtsl list`)");
   const std::string type = scalar(p["type"], context + ".type");
   const std::string name = p["name"] ? scalar(p["name"], context + ".name") : type;
   if (!valid_name(name)) throw ConfigError(context + ".name: '" + name + "' must be letters, digits, '_', '-', '.'");
   auto plugin = reconstructors().create(type, context + ".type");
+  if (p["preset"]) apply_preset(*plugin, type, scalar(p["preset"], context + ".preset"), context + ".preset");
   apply_yaml(plugin->options(), p["options"], context + ".options");
   return name;
 }
@@ -157,6 +160,13 @@ Experiment parse_experiment(YAML::Node root, const std::string& origin) {
     if (!(ex.timeout_seconds >= 0)) throw ConfigError("timeout_seconds: must not be negative");
   }
   apply_yaml(ex.metrics, root["metrics"], "metrics");
+  if (root["files_frame"]) {
+    const std::string frame = scalar(root["files_frame"], "files_frame");
+    if (frame != "input" && frame != "normalised")
+      throw ConfigError("files_frame: must be 'input' (meshes and points in the input's units) or 'normalised' "
+                        "(the [-1,1]^3 frame the errors are measured in), got '" + frame + "'");
+    ex.files_frame = frame == "input" ? FilesFrame::input : FilesFrame::normalised;
+  }
   if (root["table"]) {
     const YAML::Node t = root["table"];
     if (!t.IsMap()) throw ConfigError("table: expected a map with 'columns'");

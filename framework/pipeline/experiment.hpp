@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "framework/config/options.hpp"
+#include "framework/datasets/dataset.hpp"
 
 namespace dtsl {
 
@@ -46,6 +47,7 @@ struct Experiment {
   std::uint64_t seed = 1;
   double timeout_seconds = 0.0;  ///< per run; 0 = none
   MetricsOptions metrics;
+  FilesFrame files_frame = FilesFrame::input;  ///< `files_frame:` input (default) or normalised
   std::vector<std::string> table_columns;  ///< empty: the default columns
   YAML::Node resolved;                     ///< the whole config with --set overrides applied
   std::vector<SweepAxis> sweep;

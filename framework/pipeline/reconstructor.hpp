@@ -55,6 +55,10 @@ struct RunContext {
   }
 };
 
+/// Maps the final mesh, every stage mesh and every stage line set by `s` (into or out of the [-1,1]^3
+/// frame).
+void transform(ReconstructionResult& result, const Similarity& s);
+
 class Reconstructor {
  public:
   virtual ~Reconstructor() = default;

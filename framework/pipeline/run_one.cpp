@@ -10,6 +10,7 @@
 #include "framework/io/io.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "framework/pipeline/line_obj.hpp"
+#include "framework/pipeline/preset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 
 namespace dtsl {
@@ -57,7 +58,7 @@ nlohmann::json write_stage_files(const ReconstructionResult& result, const std::
 }
 
 nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
-                           std::uint64_t seed, const std::string& run_dir) {
+                           std::uint64_t seed, const std::string& run_dir, FilesFrame frame) {
   nlohmann::json record;
   record["run"] = run.id;
   record["dataset"] = run.dataset_name;
@@ -74,6 +75,9 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
   Stopwatch total;
   try {
     auto pipeline = reconstructors().create(run.pipeline_type, run.id);
+    const std::string preset = run.pipeline["preset"] ? run.pipeline["preset"].Scalar() : "default";
+    apply_preset(*pipeline, run.pipeline_type, preset, run.id + ".preset");
+    record["preset"] = preset;
     apply_yaml(pipeline->options(), run.pipeline["options"], run.id + ".options");
     record["options"] = to_json(pipeline->options());
     RunContext context;
@@ -84,15 +88,21 @@ nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const Met
     record["peak_memory_mib"] = peak_memory_mib();
     record["summary"] = result.summary;
 
+    // Measured in the [-1,1]^3 frame (the paper's errors), written in the files' frame.
+    std::vector<nlohmann::json> measures(result.stages.size());
+    for (std::size_t i = 0; i < result.stages.size(); ++i)
+      if (result.stages[i].mesh)
+        measures[i] = measure_mesh(*result.stages[i].mesh, dataset, metrics.stage_surfaces ? &metrics : nullptr, seed);
+    record["final"] = measure_mesh(result.mesh, dataset, &metrics, seed);
+    if (frame == FilesFrame::input) transform(result, dataset.normalisation.inverse());
+    record["files_frame"] = frame == FilesFrame::input ? "input" : "normalised";
+
     fs::create_directories(run_dir);
     nlohmann::json stages = write_stage_files(result, run_dir);
     for (std::size_t i = 0; i < result.stages.size(); ++i)
-      if (result.stages[i].mesh)
-        stages[i]["measures"] =
-            measure_mesh(*result.stages[i].mesh, dataset, metrics.stage_surfaces ? &metrics : nullptr, seed);
+      if (result.stages[i].mesh) stages[i]["measures"] = std::move(measures[i]);
     record["stages"] = stages;
     write_mesh(run_dir + "/final.ply", result.mesh);
-    record["final"] = measure_mesh(result.mesh, dataset, &metrics, seed);
     record["status"] = "ok";
   } catch (const std::exception& e) {
     // A failed run is a result: its table row says why (a bad_alloc is an out-of-memory failure).

@@ -7,17 +7,18 @@
 #include <string>
 
 #include "framework/datasets/dataset.hpp"
+#include "framework/pipeline/dataset_cache.hpp"
 #include "framework/pipeline/experiment.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 
 namespace dtsl {
 
 /// Runs `run` on `dataset`, writes final.ply, one stage_<label>.ply per stage mesh and one <name>.obj per
-/// stage line set (StageLines: the T-mesh) into `run_dir`, each atomically, and returns the metrics
-/// record (status "ok", or "failed" with the error message: a failed run is a result, not a crash).
-/// Never throws for errors of the pipeline itself.
+/// stage line set (StageLines: the T-mesh) into `run_dir` in `frame`, each atomically, and returns the
+/// metrics record (measured in the [-1,1]^3 frame; status "ok", or "failed" with the error message: a
+/// failed run is a result, not a crash). Never throws for errors of the pipeline itself.
 nlohmann::json execute_run(const RunSpec& run, const Dataset& dataset, const MetricsOptions& metrics,
-                           std::uint64_t seed, const std::string& run_dir);
+                           std::uint64_t seed, const std::string& run_dir, FilesFrame frame);
 
 /// Writes `result`'s stage meshes (stage_<label>.ply) and line sets (<name>.obj) into `dir`, each
 /// atomically, and returns a record per stage: name, seconds, summary and the files written. Throws

@@ -71,11 +71,11 @@ void prepare_datasets(const Experiment& ex, const std::vector<std::size_t>& runs
     const RunSpec& run = ex.runs[index];
     if (!done.insert(run.dataset_key).second) continue;
     const std::string ddir = dir + "/datasets/" + run.dataset_key;
-    if (dataset_complete(ddir)) continue;
+    if (dataset_complete(ddir, ex.files_frame)) continue;
     if (progress) std::cerr << "dataset " << run.dataset_key << " ..." << std::flush;
     DatasetSpec spec = parse_dataset(run.dataset, run.dataset_key);
     const Dataset d = build_dataset(spec, ex.seed);
-    write_dataset(ddir, d);
+    write_dataset(ddir, d, ex.files_frame);
     if (progress) std::cerr << " " << d.points.size() << " points\n";
   }
 }
@@ -210,7 +210,7 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
         int code = 0;
         try {
           const Dataset d = read_dataset(dir + "/datasets/" + run.dataset_key);
-          json record = execute_run(run, d, ex.metrics, ex.seed, run_dir);
+          json record = execute_run(run, d, ex.metrics, ex.seed, run_dir, ex.files_frame);
           record["order"] = index;
           write_record(run_dir, record);
         } catch (const std::exception& e) {

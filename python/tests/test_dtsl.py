@@ -77,7 +77,7 @@ def test_non_contiguous_and_integer_input():
 # The paper's method, made fast for a test (about a second): a coarser T-mesh, one round, no final
 # refinement or its topology guard, a direct solver for the few hundred control points.
 FAST_DTSL = dict(evolution_tmesh_max_depth=4, evolution_fine_levels=0, evolution_final_refinement=False,
-                 refinement_guard=False, evolution_solver="eigen_ldlt", flip_refinements=0, midway_step=0.0)
+                 refinement_guard=False, evolution_solver="eigen_ldlt", flip_refinements=0)
 
 
 def test_dtsl_pipeline_closed_sphere():
@@ -153,6 +153,33 @@ def test_unknown_option_and_pipeline():
         dtsl.reconstruct(cloud, FAST, dpeth=6)
     with pytest.raises(dtsl.ConfigError, match=r"pipeline: unknown pipeline 'no_such'; known: .*dtsl"):
         dtsl.reconstruct(cloud, "no_such")
+
+
+def test_presets():
+    presets = dtsl.presets("dtsl")
+    assert list(presets)[0] == "default" and presets["default"]["values"] == {}
+    assert "paper" in presets and presets["paper"]["values"]["evolution_velocity"] == "paper"
+    assert list(dtsl.presets(FAST)) == ["default"]  # every pipeline has default
+    with pytest.raises(dtsl.ConfigError, match=r"pipeline: unknown pipeline 'no_such'"):
+        dtsl.presets("no_such")
+    cloud = sphere_cloud(n=100)
+    with pytest.raises(dtsl.ConfigError, match=r"preset: unknown preset 'papr'.*'paper'.*known: default, paper"):
+        dtsl.reconstruct(cloud, "dtsl", preset="papr")
+    with pytest.raises(dtsl.ConfigError, match=r"unknown preset 'paper' of pipeline 'pcl_poisson'"):
+        dtsl.reconstruct(cloud, FAST, preset="paper")
+
+
+def test_paper_preset_then_options():
+    # The preset's values, then the keywords over them; the summary says which preset ran.
+    cloud = sphere_cloud(n=1000)
+    options = dict(FAST_DTSL, bilateral_max_iterations=3)
+    vertices, faces, summary = dtsl.reconstruct(cloud, "dtsl", preset="paper", **options)
+    assert summary["preset"] == "paper"
+    assert summary["options"]["evolution_velocity"] == "paper"
+    assert summary["options"]["evolution_fine_levels"] == 0
+    assert summary["options"]["bilateral_max_iterations"] == 3
+    stats = dtsl.evaluate((vertices, faces), (vertices, faces), samples=1000)
+    assert stats["watertight"] and stats["components"] == 1 and stats["genus"] == 0
 
 
 @pytest.mark.parametrize(

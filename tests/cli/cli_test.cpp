@@ -77,9 +77,9 @@ TEST_CASE("dtsl list names every registered kind and the baselines") {
 TEST_CASE("dtsl list keeps an option's name apart from its type, however long the name") {
   const Outcome o = dtsl("list pipeline dtsl");
   REQUIRE(o.code == 0);
-  // The dtsl pipeline's longest names (evolution_solver_preconditioner, ...) once ran into their type.
-  for (const char* name : {"evolution_distance_tolerance", "evolution_solver_preconditioner",
-                           "evolution_fine_points_per_cell", "evolution_solver_max_iterations"}) {
+  // The dtsl pipeline's longest names once ran into their type.
+  for (const char* name : {"evolution_fine_velocity_open_gap", "bilateral_sharp_normal_variation_deg",
+                           "bilateral_min_relative_decrease", "evolution_final_refinement"}) {
     INFO(name);
     CHECK(contains(o.output, std::string(name) + " "));
   }

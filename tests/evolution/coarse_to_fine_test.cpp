@@ -197,7 +197,7 @@ TEST_CASE("transfer: least squares is closer to the old f than quasi-interpolati
   CHECK_THROWS_WITH(transfer_from_string("nearest"), Catch::Contains("transfer") && Catch::Contains("nearest"));
 }
 
-TEST_CASE("coarse-to-fine: fine_transfer reaches the round's transfer, bad values name the key", "[evolution][fine][transfer]") {
+TEST_CASE("coarse-to-fine: the fine transfer reaches the round's transfer, bad values name the field", "[evolution][fine][transfer]") {
   const std::vector<Vec3>& points = test::torus_data();
   EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
   o.final_refinement = false;
@@ -205,13 +205,13 @@ TEST_CASE("coarse-to-fine: fine_transfer reaches the round's transfer, bad value
   const int level = r.level_set.tmesh().finest_leaf_level() + 1;
   CoarseToFineOptions fine;
   const TSpline quasi = refine_toward_data(r.level_set, points, level, fine);
-  apply_assignment(o, "fine_transfer", "least_squares", "evolution");
-  CHECK(o.fine.transfer == "least_squares");
+  o.fine.transfer = "least_squares";
+  REQUIRE_NOTHROW(o.check());
   const TSpline fitted = refine_toward_data(r.level_set, points, level, o.fine);
   REQUIRE(fitted.basis().size() == quasi.basis().size());
   CHECK(fitted.coefficients() != quasi.coefficients());
   CHECK(fitted.coefficients() == transfer_level_set(r.level_set, quasi.tmesh(), Transfer::least_squares).coefficients());
   EvolutionOptions bad;
-  CHECK_THROWS_WITH(apply_assignment(bad, "fine_transfer", "nearest", "evolution"),
-                    Catch::Contains("fine_transfer") && Catch::Contains("nearest"));
+  bad.fine.transfer = "nearest";
+  CHECK_THROWS_WITH(bad.check(), Catch::Contains("fine_transfer") && Catch::Contains("nearest"));
 }

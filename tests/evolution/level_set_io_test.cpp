@@ -49,16 +49,17 @@ TEST_CASE("level-set output: save and load round trip, history JSON, T-mesh line
 
 TEST_CASE("EvolutionOptions: one flat map configures the stage and its plugins", "[evolution][options]") {
   EvolutionOptions o;
-  apply_yaml(o, YAML::Load("{velocity: geodesic, velocity_lambda: 0.5, solver: eigen_ldlt, solver_tolerance: 1e-9, "
-                           "tmesh_max_depth: 5, refine_fit_iterations: 2, w_smooth: 0.01}"),
+  apply_yaml(o, YAML::Load("{velocity: geodesic, velocity_lambda: 0.5, solver: eigen_ldlt, tmesh_max_depth: 5, "
+                           "fine_levels: 2}"),
              "level_set");
   CHECK(o.velocity == "geodesic");
   CHECK(o.tmesh.max_depth == 5);
-  CHECK(o.refinement.fit_iterations == 2);
-  CHECK(o.w_smooth == 0.01);
+  CHECK(o.fine.levels == 2);
   const nlohmann::json j = to_json(o);
   CHECK(j["velocity_lambda"] == 0.5);
-  CHECK(j["solver_tolerance"] == 1e-9);
+  // Constants of the method are no options: configs cannot reach them.
+  CHECK_THROWS_WITH(apply_yaml(o, YAML::Load("{w_smooth: 0.01}"), "level_set"), Catch::Contains("w_smooth"));
+  CHECK(!j.contains("solver_tolerance"));
   CHECK(!j.contains("velocity_beta"));  // the balloon's option is not the geodesic's
   // Copies clone the plugins with their options.
   EvolutionOptions copy = o;

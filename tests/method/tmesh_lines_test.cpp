@@ -125,7 +125,7 @@ TEST_CASE("a dtsl run writes its T-mesh: lines on octree cell edges, inside the 
   metrics.samples = 2000;
   const fs::path dir = fs::temp_directory_path() / ("dtsl_tmesh_run_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  const nlohmann::json record = execute_run(run, data, metrics, 1, dir.string());
+  const nlohmann::json record = execute_run(run, data, metrics, 1, dir.string(), FilesFrame::normalised);
   INFO(record.dump(1).substr(0, 2000));
   REQUIRE(record.value("status", "") == "ok");
   const nlohmann::json& tl = record["stages"][0];
