@@ -92,6 +92,24 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh, const std::string& what) 
   return adj;
 }
 
+std::size_t misoriented_edges(const TriangleMesh& mesh, const MeshEdges& edges) {
+  // +1 where face f runs u -> v, -1 where it runs v -> u.
+  const auto direction = [&mesh](int f, int u, int v) {
+    const Face& t = mesh.faces[f];
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == u) return t[(k + 1) % 3] == v ? 1 : -1;
+    return 0;
+  };
+  std::size_t count = 0;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    int forward = 0, backward = 0;
+    for (std::size_t i = edges.first_face[e]; i < edges.first_face[e + 1]; ++i)
+      (direction(edges.faces[i], edges.ends[e][0], edges.ends[e][1]) > 0 ? forward : backward) += 1;
+    count += forward > 1 || backward > 1 ? 1 : 0;
+  }
+  return count;
+}
+
 std::vector<int> k_ring(const MeshAdjacency& adjacency, int v, int rings) {
   std::vector<int> out{v};
   std::size_t begin = 0;

@@ -53,6 +53,10 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh, const std::string& what =
 /// MeshAdjacency::vertex_faces alone (for a search that needs no rings); the same check and message.
 std::vector<std::vector<int>> vertex_faces(const TriangleMesh& mesh, const std::string& what = "mesh");
 
+/// Edges two of whose faces traverse them the same way, so the faces' orientations disagree there (0 on
+/// a consistently oriented mesh). Pre-condition: `edges` is mesh_edges(mesh).
+std::size_t misoriented_edges(const TriangleMesh& mesh, const MeshEdges& edges);
+
 /// Vertices within `rings` edge hops of v (v included), in breadth-first order.
 std::vector<int> k_ring(const MeshAdjacency& adjacency, int v, int rings);
 

@@ -110,6 +110,13 @@ TEST_CASE("icosahedron rings: every vertex has 5 neighbours and 5 faces; k_ring 
   CHECK(k_ring(adj, 0, 3).size() == 12);
 }
 
+TEST_CASE("misoriented_edges: 0 on a consistently oriented tetrahedron, the 3 edges of one flipped face", "[core][mesh]") {
+  TriangleMesh tet = tetrahedron();
+  CHECK(misoriented_edges(tet, mesh_edges(tet)) == 0);
+  std::swap(tet.faces[2][1], tet.faces[2][2]);
+  CHECK(misoriented_edges(tet, mesh_edges(tet)) == 3);
+}
+
 TEST_CASE("a face with a repeated corner is no edge's face but stays in the vertex's fan", "[core][mesh]") {
   TriangleMesh m = tetrahedron();
   m.faces.push_back({0, 0, 1});
