@@ -11,6 +11,7 @@
 #include <cmath>
 #include <string>
 
+#include "framework/core/connected_components.hpp"
 #include "framework/core/error.hpp"
 
 namespace dtsl {
@@ -35,30 +36,13 @@ HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,
   HoleFairingReport report;
 
   // The regions: connected free vertices, each with the fixed vertices next to it (its rim).
-  std::vector<int> region_of(nv, -1), rim_of(nv, -1);
-  std::vector<std::vector<int>> regions;
-  std::vector<std::size_t> rim;
-  for (std::size_t seed = 0; seed < nv; ++seed) {
-    if (!free[seed] || region_of[seed] >= 0) continue;
-    const int id = static_cast<int>(regions.size());
-    regions.emplace_back();
-    rim.push_back(0);
-    std::vector<int> stack{static_cast<int>(seed)};
-    region_of[seed] = id;
-    while (!stack.empty()) {
-      const int v = stack.back();
-      stack.pop_back();
-      regions[id].push_back(v);
-      for (int u : neighbours[v]) {
-        if (!free[u]) {
-          if (rim_of[u] != id) rim_of[u] = id, ++rim[id];
-        } else if (region_of[u] < 0) {
-          region_of[u] = id;
-          stack.push_back(u);
-        }
-      }
-    }
-  }
+  const std::vector<std::vector<int>> regions = connected_groups(neighbours, free);
+  std::vector<int> rim_of(nv, -1);
+  std::vector<std::size_t> rim(regions.size(), 0);
+  for (std::size_t id = 0; id < regions.size(); ++id)
+    for (int v : regions[id])
+      for (int u : neighbours[v])
+        if (!free[u] && rim_of[u] != static_cast<int>(id)) rim_of[u] = static_cast<int>(id), ++rim[id];
   // A hole in sampled data is bounded by data: a disc of n vertices has ~3.5 sqrt(n) on its rim, a strip
   // more. A region held by fewer than sqrt(n) fixed vertices is a surface with a few data points on it
   // (a degenerate input: 67k free vertices, 13 fixed); fairing it would invent its shape from those few,

@@ -4,6 +4,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include "framework/core/connected_components.hpp"
 #include "framework/core/error.hpp"
 
 namespace dtsl {
@@ -19,17 +20,16 @@ HoleFillReport harmonic_fill(const std::vector<std::vector<int>>& neighbours, co
   report.unknown = static_cast<std::size_t>(m);
   if (m == 0) return report;
 
-  // Components of unknowns that touch no known vertex have no boundary condition: found by a flood
-  // fill, they get 0 (the base surface) and are left out of the system so it stays positive definite.
-  std::vector<char> reached(n, 0);
-  std::vector<int> stack;
-  for (int i = 0; i < n; ++i)
-    if (known[i]) reached[i] = 1, stack.push_back(i);
-  while (!stack.empty()) {
-    const int i = stack.back();
-    stack.pop_back();
-    for (int j : neighbours[i])
-      if (!reached[j]) reached[j] = 1, stack.push_back(j);
+  // Components of unknowns that touch no known vertex have no boundary condition: they get 0 (the base
+  // surface) and are left out of the system so it stays positive definite.
+  std::vector<char> unknown(n, 0), reached(n, 0);
+  for (int i = 0; i < n; ++i) unknown[i] = !known[i];
+  for (const std::vector<int>& group : connected_groups(neighbours, unknown)) {
+    bool anchored = false;
+    for (std::size_t k = 0; k < group.size() && !anchored; ++k)
+      for (int j : neighbours[group[k]]) anchored = anchored || known[j];
+    if (anchored)
+      for (int i : group) reached[i] = 1;
   }
   m = 0;
   for (int i = 0; i < n; ++i) {

@@ -1,23 +1,18 @@
 #include "algorithms/displacement/hole_rim.hpp"
 
+#include "framework/core/connected_components.hpp"
+
 namespace dtsl {
 
 std::vector<int> grow_hole_rims(const std::vector<std::vector<int>>& neighbours, const std::vector<double>& one_sidedness,
                                 double rim_offset, int rings, int min_hole_vertices, std::vector<char>& known) {
   const std::size_t nv = known.size();
   // The holes large enough to seed a rim: connected components of the hole vertices.
-  std::vector<char> seed(nv, 0), seen(nv, 0);
-  std::vector<int> component;
-  for (std::size_t start = 0; start < nv; ++start) {
-    if (known[start] || seen[start]) continue;
-    component.assign(1, static_cast<int>(start));
-    seen[start] = 1;
-    for (std::size_t q = 0; q < component.size(); ++q)
-      for (int u : neighbours[static_cast<std::size_t>(component[q])])
-        if (!known[u] && !seen[u]) seen[u] = 1, component.push_back(u);
+  std::vector<char> seed(nv, 0), hole(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) hole[v] = !known[v];
+  for (const std::vector<int>& component : connected_groups(neighbours, hole))
     if (static_cast<int>(component.size()) >= min_hole_vertices)
       for (int v : component) seed[v] = 1;
-  }
   std::vector<int> joined;
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<int> joining;

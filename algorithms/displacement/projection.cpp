@@ -80,31 +80,12 @@ MeshLocator::MeshLocator(const TriangleMesh& mesh, const LocatorOptions& options
   options_.check();
   if (mesh.faces.empty() || mesh.vertices.empty()) throw AlgorithmError("mesh projection: the mesh has no faces");
   check_finite(mesh, "mesh projection");
-  const int nv = static_cast<int>(mesh.vertices.size());
-  vertex_faces_.assign(nv, {});
-  vertex_neighbours_.assign(nv, {});
+  adjacency_ = mesh_adjacency(mesh, "mesh projection");
+  // The mean over every face side (an inner edge counts twice, a boundary edge once).
   double total = 0.0;
   std::size_t edges = 0;
-  for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
-    const Face& f = mesh.faces[fi];
-    for (int k = 0; k < 3; ++k) {
-      if (f[k] < 0 || f[k] >= nv)
-        throw AlgorithmError("mesh projection: face " + std::to_string(fi) + " has vertex index " +
-                             std::to_string(f[k]) + " out of range");
-    }
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[k], b = f[(k + 1) % 3];
-      vertex_faces_[a].push_back(static_cast<int>(fi));
-      vertex_neighbours_[a].push_back(b);
-      vertex_neighbours_[b].push_back(a);
-      total += (mesh.vertices[a] - mesh.vertices[b]).norm();
-      ++edges;
-    }
-  }
-  for (auto& n : vertex_neighbours_) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
+  for (const Face& f : mesh.faces)
+    for (int k = 0; k < 3; ++k, ++edges) total += (mesh.vertices[f[k]] - mesh.vertices[f[(k + 1) % 3]]).norm();
   mean_edge_ = total / static_cast<double>(edges);
   if (!(mean_edge_ > 0)) throw AlgorithmError("mesh projection: every edge of the mesh has length 0");
   grid_ = PointGrid(mesh.vertices, options_.grid_cell * mean_edge_);
@@ -115,7 +96,7 @@ MeshLocation MeshLocator::one_ring(const Vec3& q, int vertex) const {
   best.closest_vertex = vertex;
   best.distance = std::numeric_limits<double>::infinity();
   const auto& V = mesh_->vertices;
-  for (int fi : vertex_faces_[vertex]) {
+  for (int fi : adjacency_.vertex_faces[vertex]) {
     const Face& f = mesh_->faces[fi];
     Vec3 bary;
     const Vec3 x = closest_point_on_triangle(q, V[f[0]], V[f[1]], V[f[2]], bary);
@@ -162,7 +143,7 @@ MeshLocation MeshLocator::locate_from(const Vec3& q, int v) const {
   double dv = (mesh_->vertices[v] - q).squaredNorm();
   for (bool moved = true; moved;) {  // greedy descent on the vertex graph
     moved = false;
-    for (int n : vertex_neighbours_[v]) {
+    for (int n : adjacency_.vertex_neighbours[v]) {
       const double dn = (mesh_->vertices[n] - q).squaredNorm();
       if (dn < dv) dv = dn, v = n, moved = true;
     }
@@ -173,10 +154,10 @@ MeshLocation MeshLocator::locate_from(const Vec3& q, int v) const {
 std::vector<int> MeshLocator::closest_faces(const MeshLocation& loc) const {
   switch (loc.kind) {
     case ProjectionCase::face: return {loc.face};
-    case ProjectionCase::vertex: return vertex_faces_[loc.element[0]];
+    case ProjectionCase::vertex: return adjacency_.vertex_faces[loc.element[0]];
     case ProjectionCase::edge: {
       std::vector<int> out;
-      for (int fi : vertex_faces_[loc.element[0]]) {
+      for (int fi : adjacency_.vertex_faces[loc.element[0]]) {
         const Face& f = mesh_->faces[fi];
         if (f[0] == loc.element[1] || f[1] == loc.element[1] || f[2] == loc.element[1]) out.push_back(fi);
       }

@@ -17,6 +17,7 @@
 #include "algorithms/polygonize/newton_projection.hpp"
 #include "framework/config/options.hpp"
 #include "framework/core/implicit.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/core/types.hpp"
 
 namespace dtsl {
@@ -72,10 +73,11 @@ class MeshLocator {
   std::vector<int> closest_faces(const MeshLocation& loc) const;
 
   const TriangleMesh& mesh() const { return *mesh_; }
-  const std::vector<int>& vertex_faces(int v) const { return vertex_faces_[v]; }
-  const std::vector<int>& vertex_neighbours(int v) const { return vertex_neighbours_[v]; }
+  const MeshAdjacency& adjacency() const { return adjacency_; }
+  const std::vector<int>& vertex_faces(int v) const { return adjacency_.vertex_faces[v]; }
+  const std::vector<int>& vertex_neighbours(int v) const { return adjacency_.vertex_neighbours[v]; }
   /// Every vertex's neighbours at once (for the graph solves of the hole fill and fairing).
-  const std::vector<std::vector<int>>& vertex_neighbours() const { return vertex_neighbours_; }
+  const std::vector<std::vector<int>>& vertex_neighbours() const { return adjacency_.vertex_neighbours; }
   double mean_edge_length() const { return mean_edge_; }
 
  private:
@@ -83,7 +85,7 @@ class MeshLocator {
 
   const TriangleMesh* mesh_;
   LocatorOptions options_;
-  std::vector<std::vector<int>> vertex_faces_, vertex_neighbours_;
+  MeshAdjacency adjacency_;
   double mean_edge_ = 0.0;
   PointGrid grid_;
 };

@@ -10,8 +10,11 @@
 #include <unordered_map>
 
 #include "algorithms/polygonize/seeding.hpp"
+#include "framework/core/connected_components.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/core/timer.hpp"
+#include "framework/core/union_find.hpp"
 
 namespace dtsl {
 
@@ -220,56 +223,16 @@ Vec3 edge_root(const ImplicitFunction& f, const EdgeVertex& e) {
   return e.pa + t * (e.pb - e.pa);
 }
 
-struct UnionFind {
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    return x;
-  }
-  void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
-  std::vector<int> parent;
-};
-
-/// Component label (0..count-1) of every vertex referenced by a face; -1 for unreferenced ones.
-std::vector<int> vertex_components(const TriangleMesh& mesh, std::size_t& count) {
-  UnionFind uf(mesh.vertices.size());
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const Face& t : mesh.faces) {
-    uf.unite(t[0], t[1]);
-    uf.unite(t[1], t[2]);
-    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
-  }
-  std::vector<int> label(mesh.vertices.size(), -1), root_label(mesh.vertices.size(), -1);
-  count = 0;
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    if (!used[v]) continue;
-    const auto r = static_cast<std::size_t>(uf.find(static_cast<int>(v)));
-    if (root_label[r] < 0) root_label[r] = static_cast<int>(count++);
-    label[v] = root_label[r];
-  }
-  return label;
-}
-
 /// Loops of boundary edges (edges of one face), counted as connected groups of boundary vertices.
 std::size_t boundary_loops(const TriangleMesh& mesh) {
-  std::unordered_map<std::uint64_t, int> uses;
-  for (const Face& t : mesh.faces)
-    for (int s = 0; s < 3; ++s) {
-      auto u = static_cast<std::uint32_t>(t[static_cast<std::size_t>(s)]), v = static_cast<std::uint32_t>(t[static_cast<std::size_t>((s + 1) % 3)]);
-      if (u > v) std::swap(u, v);
-      ++uses[(static_cast<std::uint64_t>(u) << 32) | v];
-    }
-  UnionFind uf(mesh.vertices.size());
-  std::vector<int> on(mesh.vertices.size(), 0);  // int, not char: GCC 12 warns falsely (-Wfree-nonheap-object)
-  for (const auto& e : uses) {
-    if (e.second != 1) continue;
-    const int u = static_cast<int>(e.first >> 32), v = static_cast<int>(e.first & 0xFFFFFFFFu);
-    uf.unite(u, v);
-    on[static_cast<std::size_t>(u)] = on[static_cast<std::size_t>(v)] = 1;
-  }
-  std::size_t loops = 0;
-  for (std::size_t v = 0; v < on.size(); ++v) loops += on[v] && uf.find(static_cast<int>(v)) == static_cast<int>(v) ? 1 : 0;
-  return loops;
+  const MeshEdges edges = mesh_edges(mesh, "marching_cubes");
+  UnionFind loops(mesh.vertices.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (edges.boundary(e)) loops.unite(edges.ends[e][0], edges.ends[e][1]);
+  const std::vector<char> on = edges.boundary_vertices(mesh.vertices.size());
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < on.size(); ++v) count += on[v] && loops.find(v) == v ? 1 : 0;
+  return count;
 }
 
 /// The nodes whose exact value the mesh depends on, given a test that certifies f > 0 (empty: all of
@@ -411,8 +374,9 @@ PolygonizeResult marching_cubes(const ImplicitFunction& f, const std::vector<Vec
   }
 
   // 4. Components: with data, keep those a foot point lies on (the seeding rule of §2.2).
-  std::size_t found = 0;
-  std::vector<int> label = vertex_components(mesh, found);
+  const VertexComponents components = vertex_components(mesh);
+  const std::vector<int>& label = components.label;
+  const std::size_t found = components.count;
   std::vector<char> keep(found, 1);
   SeedCandidates feet;
   if (!data.empty() && options.drop_dataless_components) {

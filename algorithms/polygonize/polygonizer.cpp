@@ -1,73 +1,20 @@
 // The polygonizer registry, the plugin wrappers around the free functions, and the summary.
 #include "algorithms/polygonize/polygonizer.hpp"
 
-#include <Eigen/Geometry>
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <numeric>
-#include <unordered_map>
-
 #include "algorithms/polygonize/marching_cubes.hpp"
 #include "algorithms/polygonize/marching_triangulation.hpp"
+#include "framework/metrics/metrics.hpp"
 
 namespace dtsl {
 
 MeshQuality mesh_quality(const TriangleMesh& mesh) {
-  // Same definitions as the metrics module's mesh_stats (docs/design.md §5): every face's smallest angle
-  // (0 for a degenerate one), the nearest-rank 1st percentile, valence = number of distinct edges.
+  const MeshStats s = mesh_stats(mesh);  // one definition of these numbers (docs/design.md §5)
   MeshQuality q;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> angles;
-  angles.reserve(mesh.faces.size());
-  std::unordered_map<std::uint64_t, int> edge_faces;
-  const auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
-  for (const Face& t : mesh.faces) {
-    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
-    const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
-    const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    angles.push_back(repeated ? 0.0
-                              : std::min({angle(b - a, c - a), angle(c - b, a - b), angle(a - c, b - c)}) * 180.0 / M_PI);
-    if (repeated) continue;
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t u = static_cast<std::uint32_t>(t[static_cast<std::size_t>(k)]);
-      std::uint32_t v = static_cast<std::uint32_t>(t[static_cast<std::size_t>((k + 1) % 3)]);
-      if (u > v) std::swap(u, v);
-      ++edge_faces[(static_cast<std::uint64_t>(u) << 32) | v];
-    }
-  }
-  if (angles.empty()) {
-    q.min_angle_deg = q.min_angle_p01_deg = q.min_angle_mean_deg = q.valence6_fraction = nan;
-    return q;
-  }
-  q.min_angle_mean_deg = std::accumulate(angles.begin(), angles.end(), 0.0) / static_cast<double>(angles.size());
-  q.min_angle_deg = *std::min_element(angles.begin(), angles.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.01 * static_cast<double>(angles.size())));
-  const auto nth = angles.begin() + static_cast<long>(rank > 0 ? rank - 1 : 0);
-  std::nth_element(angles.begin(), nth, angles.end());
-  q.min_angle_p01_deg = *nth;
-
-  std::vector<int> valence(mesh.vertices.size(), 0);
-  std::vector<char> boundary(mesh.vertices.size(), 0), used(mesh.vertices.size(), 0);
-  for (const auto& e : edge_faces) {
-    const auto u = static_cast<std::size_t>(e.first >> 32), v = static_cast<std::size_t>(e.first & 0xFFFFFFFFu);
-    ++valence[u];
-    ++valence[v];
-    used[u] = used[v] = 1;
-    if (e.second == 1) {
-      ++q.boundary_edges;
-      boundary[u] = boundary[v] = 1;
-    }
-  }
-  std::size_t interior = 0, six = 0;
-  for (std::size_t v = 0; v < valence.size(); ++v)
-    if (used[v] && !boundary[v]) {
-      ++interior;
-      six += valence[v] == 6 ? 1 : 0;
-    }
-  q.valence6_fraction = interior ? static_cast<double>(six) / static_cast<double>(interior) : nan;
+  q.min_angle_deg = s.min_angle_deg;
+  q.min_angle_p01_deg = s.min_angle_p01_deg;
+  q.min_angle_mean_deg = s.min_angle_mean_deg;
+  q.valence6_fraction = s.valence6_fraction;
+  q.boundary_edges = s.boundary_edges;
   return q;
 }
 

@@ -19,8 +19,8 @@
 
 namespace dtsl {
 
-/// Triangle-quality numbers of a polygonizer's output. They are a diagnostic of the stage; tables
-/// use the metrics module's mesh_stats (one definition, docs/design.md §5), which agrees on these fields.
+/// Triangle-quality numbers of a polygonizer's output: a diagnostic of the stage, the fields of the
+/// metrics module's mesh_stats that concern it (one definition, docs/design.md §5).
 struct MeshQuality {
   double min_angle_deg = 0.0;       ///< smallest triangle angle in the mesh
   double min_angle_p01_deg = 0.0;   ///< 1st percentile (nearest rank) of the triangles' smallest angles
@@ -28,6 +28,7 @@ struct MeshQuality {
   double valence6_fraction = 0.0;   ///< vertices of valence 6 among vertices on no boundary edge
   std::size_t boundary_edges = 0;   ///< edges with one triangle (0 for a closed result)
 };
+/// Throws AlgorithmError for a non-finite vertex or a face index out of range (as mesh_stats).
 MeshQuality mesh_quality(const TriangleMesh& mesh);
 
 struct PolygonizeSummary {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 
 namespace dtsl {
 
@@ -101,10 +102,8 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
 }
 
 MeshProximity::MeshProximity(const TriangleMesh& mesh, double radius)
-    : mesh_(mesh), radius_(radius), hash_(radius), vertex_faces_(mesh.vertices.size()) {
+    : mesh_(mesh), radius_(radius), hash_(radius), vertex_faces_(vertex_faces(mesh, "mesh proximity")) {
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) hash_.insert(static_cast<int>(v), mesh.vertices[v]);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int v : mesh.faces[f]) vertex_faces_[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
 }
 
 MeshProximity::Hit MeshProximity::closest(const Vec3& p) const {

@@ -5,7 +5,7 @@
 
 #include "algorithms/sharpen/bilateral_target.hpp"
 #include "algorithms/sharpen/foot_points.hpp"
-#include "algorithms/sharpen/mesh_adjacency.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/config/prefixed_visitor.hpp"
 #include "framework/core/error.hpp"
@@ -98,7 +98,7 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
   TriangleMesh cur;
   cur.vertices = mesh.vertices;
   cur.faces = mesh.faces;
-  const MeshAdjacency adj = build_adjacency(cur);
+  const MeshAdjacency adj = mesh_adjacency(cur);
   std::vector<Vec3> original_normals(cur.faces.size());
   for (std::size_t f = 0; f < cur.faces.size(); ++f) {
     const Face& t = cur.faces[f];
@@ -206,7 +206,7 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
   BilateralEvolutionResult result;
   const DegenerateRemovalReport removal = remove_degenerate_triangles(cur, moved, o.degenerate, original_normals);
   const double e_final = mean_distance(foot_points(cur, points, o.snap));
-  if (mesh.has_normals()) cur.normals = vertex_normals(cur, build_adjacency(cur));
+  if (mesh.has_normals()) cur.normals = vertex_normals(cur, mesh_adjacency(cur));
   for (std::size_t v = 0; v < moved.size(); ++v)
     if (moved[v]) result.sharp_vertices.push_back(static_cast<int>(v));
   result.mesh = std::move(cur);

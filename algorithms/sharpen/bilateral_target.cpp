@@ -38,7 +38,7 @@ Vec3 bilateral_target(const TriangleMesh& mesh, const MeshAdjacency& adj, int v,
       sum += wgt * proj;
       wsum += wgt;
     }
-    for (const int u : adj.vertex_neighbors[w])
+    for (const int u : adj.vertex_neighbours[w])
       if ((mesh.vertices[u] - x).squaredNorm() <= r2 && seen_v.insert(u).second) queue.push_back(u);
   }
   return wsum > 0.0 ? Vec3(sum / wsum) : x;

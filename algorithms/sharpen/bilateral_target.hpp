@@ -5,7 +5,7 @@
 // faces on both sides of a rounded edge pull v towards the planes' intersection: the sharp edge.
 #pragma once
 
-#include "algorithms/sharpen/mesh_adjacency.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/core/types.hpp"
 
 namespace dtsl::sharpen {

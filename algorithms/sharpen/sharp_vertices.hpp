@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "algorithms/sharpen/foot_points.hpp"
-#include "algorithms/sharpen/mesh_adjacency.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/config/options.hpp"
 
 namespace dtsl::sharpen {

@@ -10,10 +10,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
-#include <numeric>
 
 #include "framework/config/yaml_options.hpp"
+#include "framework/core/connected_components.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/datasets/dataset.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "tests/datasets/option_errors.hpp"
@@ -27,23 +28,6 @@ ShapeData load_shape(const std::string& type, const std::string& yaml) {
   auto shape = shape_sources().create(type, "test");
   apply_yaml(shape->options(), YAML::Load(yaml), "test");
   return shape->load();
-}
-
-/// Component label of every vertex (union-find over the faces).
-std::vector<int> component_labels(const TriangleMesh& m) {
-  std::vector<int> parent(m.vertices.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const Face& f : m.faces) {
-    parent[find(f[0])] = find(f[1]);
-    parent[find(f[1])] = find(f[2]);
-  }
-  std::vector<int> label(m.vertices.size());
-  for (std::size_t v = 0; v < label.size(); ++v) label[v] = find(static_cast<int>(v));
-  return label;
 }
 
 /// Whether two faces of the mesh cross (CGAL's exact test): a self-intersecting surface bounds no solid,
@@ -71,14 +55,9 @@ void check_ground_truth(const ShapeData& d, std::size_t components, int genus) {
   CHECK(s.min_angle_deg > 5.0);  // isotropic remeshing leaves no sliver
   CHECK_FALSE(self_intersects(m));
 
-  std::map<std::pair<int, int>, int> directed;
-  for (const Face& f : m.faces)
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
-  std::size_t misoriented = 0;
-  for (const auto& e : directed) misoriented += e.second > 1 ? 1 : 0;
-  CHECK(misoriented == 0);
+  CHECK(misoriented_edges(m, mesh_edges(m)) == 0);
 
-  const std::vector<int> label = component_labels(m);
+  const std::vector<int> label = vertex_components(m).label;
   std::map<int, double> volume;
   std::map<int, Vec3> centre;
   std::map<int, int> count;

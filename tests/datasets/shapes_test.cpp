@@ -6,11 +6,11 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <map>
-#include <numeric>
+#include <algorithm>
 
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/datasets/dataset.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "tests/datasets/option_errors.hpp"
@@ -26,50 +26,6 @@ ShapeData load_shape(const std::string& type, const std::string& yaml = "{}") {
   return shape->load();
 }
 
-/// Topology counted independently of the metrics module: edges from sorted vertex pairs, components by
-/// union-find over faces, orientation by counting each directed edge.
-struct Topology {
-  std::size_t vertices = 0, edges = 0, faces = 0, boundary = 0, nonmanifold = 0, misoriented = 0;
-  std::size_t components = 0;
-  long euler = 0;
-  double genus = 0;
-};
-
-Topology topology(const TriangleMesh& m) {
-  Topology t;
-  t.vertices = m.vertices.size();
-  t.faces = m.faces.size();
-  std::map<std::pair<int, int>, int> undirected, directed;
-  std::vector<int> parent(m.vertices.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const Face& f : m.faces)
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[k], b = f[(k + 1) % 3];
-      ++undirected[std::minmax(a, b)];
-      ++directed[{a, b}];
-      parent[find(a)] = find(b);
-    }
-  t.edges = undirected.size();
-  for (const auto& e : undirected) {
-    if (e.second == 1) ++t.boundary;
-    if (e.second > 2) ++t.nonmanifold;
-  }
-  for (const auto& e : directed)
-    if (e.second > 1) ++t.misoriented;  // two faces traversing an edge the same way
-  std::vector<bool> used(m.vertices.size(), false);
-  for (const Face& f : m.faces)
-    for (int v : f) used[v] = true;
-  for (std::size_t v = 0; v < used.size(); ++v)
-    if (used[v] && find(static_cast<int>(v)) == static_cast<int>(v)) ++t.components;
-  t.euler = static_cast<long>(t.vertices) - static_cast<long>(t.edges) + static_cast<long>(t.faces);
-  t.genus = (2.0 * static_cast<double>(t.components) - static_cast<double>(t.euler)) / 2.0;
-  return t;
-}
-
 double signed_volume(const TriangleMesh& m) {
   double v = 0;
   for (const Face& f : m.faces) v += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
@@ -77,24 +33,19 @@ double signed_volume(const TriangleMesh& m) {
 }
 
 void check_closed(const TriangleMesh& m, std::size_t components, double genus) {
-  const Topology t = topology(m);
-  CHECK(t.boundary == 0);
-  CHECK(t.nonmanifold == 0);
-  CHECK(t.misoriented == 0);
-  CHECK(t.components == components);
-  CHECK(t.genus == genus);
+  const MeshStats s = mesh_stats(m);  // what the experiments report
+  CHECK(s.boundary_edges == 0);
+  CHECK(s.nonmanifold_edges == 0);
+  CHECK(s.watertight);
+  CHECK(misoriented_edges(m, mesh_edges(m)) == 0);
+  CHECK(s.components == components);
+  CHECK(s.genus == genus);
   CHECK(signed_volume(m) > 0.0);  // faces oriented outward
+  CHECK(s.degenerate_faces == 0);
   for (const Face& f : m.faces) {
     const Vec3 c = (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]);
     REQUIRE(c.norm() > 0.0);  // no degenerate triangle
   }
-
-  // The same through the metrics module, which the experiments will report.
-  const MeshStats s = mesh_stats(m);
-  CHECK(s.watertight);
-  CHECK(s.components == components);
-  CHECK(s.genus == genus);
-  CHECK(s.degenerate_faces == 0);
 }
 
 void check_unit_normals(const TriangleMesh& m) {
@@ -181,13 +132,10 @@ TEST_CASE("block: closed genus 1, dense, sharp exactly at the box edges and hole
   }
 
   // Evenly dense: no edge much longer than the target spacing, none much shorter.
-  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
-  for (std::size_t f = 0; f < m.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k)
-      edge_faces[std::minmax(m.faces[f][k], m.faces[f][(k + 1) % 3])].push_back(static_cast<int>(f));
+  const MeshEdges edges = mesh_edges(m);
   double shortest = 1e9, longest = 0;
-  for (const auto& [edge, faces] : edge_faces) {
-    const double len = (m.vertices[edge.first] - m.vertices[edge.second]).norm();
+  for (const auto& [u, v] : edges.ends) {
+    const double len = (m.vertices[u] - m.vertices[v]).norm();
     shortest = std::min(shortest, len);
     longest = std::max(longest, len);
   }
@@ -203,12 +151,13 @@ TEST_CASE("block: closed genus 1, dense, sharp exactly at the box edges and hole
     return Vec3((m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).normalized());
   };
   double sharp_length = 0, max_soft_angle = 0;
-  for (const auto& [edge, faces] : edge_faces) {
-    REQUIRE(faces.size() == 2);
-    const double angle = std::acos(std::clamp(normal(faces[0]).dot(normal(faces[1])), -1.0, 1.0));
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    REQUIRE(edges.face_count(e) == 2);
+    const int f0 = edges.faces[edges.first_face[e]], f1 = edges.faces[edges.first_face[e] + 1];
+    const double angle = std::acos(std::clamp(normal(f0).dot(normal(f1)), -1.0, 1.0));
     if (angle > M_PI / 4) {
       CHECK(angle == Approx(M_PI / 2).margin(1e-9));  // all the block's edges are right angles
-      sharp_length += (m.vertices[edge.first] - m.vertices[edge.second]).norm();
+      sharp_length += (m.vertices[edges.ends[e][0]] - m.vertices[edges.ends[e][1]]).norm();
     } else {
       max_soft_angle = std::max(max_soft_angle, angle);
     }

@@ -3,10 +3,10 @@
 
 #include <cmath>
 #include <iostream>
-#include <set>
 
 #include "algorithms/displacement/hole_fairing.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "implicits.hpp"
 #include "support.hpp"
 
@@ -15,14 +15,7 @@ using namespace dtsl::test;
 
 namespace {
 
-std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& m) {
-  std::vector<std::set<int>> s(m.vertices.size());
-  for (const Face& f : m.faces)
-    for (int k = 0; k < 3; ++k) s[f[k]].insert(f[(k + 1) % 3]), s[f[(k + 1) % 3]].insert(f[k]);
-  std::vector<std::vector<int>> out;
-  for (const auto& n : s) out.emplace_back(n.begin(), n.end());
-  return out;
-}
+std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& m) { return mesh_adjacency(m).vertex_neighbours; }
 
 // Largest | |v| - r | over the flagged vertices.
 double sphere_deviation(const TriangleMesh& m, const std::vector<char>& flag, double r) {

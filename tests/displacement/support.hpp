@@ -2,6 +2,7 @@
 // implicit, area-uniform-ish directions (Fibonacci sphere) and dihedral angles per edge.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -9,6 +10,7 @@
 
 #include "algorithms/polygonize/marching_triangulation.hpp"
 #include "framework/core/implicit.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 
 namespace dtsl::test {
 
@@ -31,17 +33,17 @@ inline std::vector<Vec3> fibonacci_directions(int n) {
 
 /// Angle (radians) between the normals of the two faces of every interior edge, keyed by the edge.
 inline std::map<std::pair<int, int>, double> dihedral_angles(const TriangleMesh& m) {
-  std::map<std::pair<int, int>, std::vector<Vec3>> normals;
-  for (const Face& f : m.faces) {
-    const Vec3 n = (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).normalized();
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[k], b = f[(k + 1) % 3];
-      normals[{std::min(a, b), std::max(a, b)}].push_back(n);
-    }
-  }
+  const MeshEdges edges = mesh_edges(m);
+  const auto normal = [&m](int f) {
+    const Face& t = m.faces[f];
+    return Vec3((m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).normalized());
+  };
   std::map<std::pair<int, int>, double> out;
-  for (const auto& e : normals)
-    if (e.second.size() == 2) out[e.first] = std::acos(std::clamp(e.second[0].dot(e.second[1]), -1.0, 1.0));
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (edges.face_count(e) == 2) {
+      const double c = normal(edges.faces[edges.first_face[e]]).dot(normal(edges.faces[edges.first_face[e] + 1]));
+      out[{edges.ends[e][0], edges.ends[e][1]}] = std::acos(std::clamp(c, -1.0, 1.0));
+    }
   return out;
 }
 

@@ -4,12 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <set>
 #include <utility>
 #include <vector>
 
 #include "algorithms/polygonize/marching_triangulation.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "tests/polygonize/implicits.hpp"
 #include "tests/polygonize/support.hpp"
@@ -26,11 +26,9 @@ MarchingTriangulationOptions with_step(double step) {
 }
 
 double mean_edge_length(const TriangleMesh& m) {
-  std::set<std::pair<int, int>> edges;
-  for (const Face& t : m.faces)
-    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+  const MeshEdges edges = mesh_edges(m);
   double sum = 0.0;
-  for (const auto& e : edges) sum += (m.vertices[e.first] - m.vertices[e.second]).norm();
+  for (const auto& [u, v] : edges.ends) sum += (m.vertices[u] - m.vertices[v]).norm();
   return sum / static_cast<double>(edges.size());
 }
 

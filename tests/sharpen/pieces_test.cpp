@@ -6,7 +6,7 @@
 #include "algorithms/sharpen/bilateral_target.hpp"
 #include "algorithms/sharpen/degenerate_removal.hpp"
 #include "algorithms/sharpen/foot_points.hpp"
-#include "algorithms/sharpen/mesh_adjacency.hpp"
+#include "framework/core/mesh_adjacency.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/metrics/metrics.hpp"
 #include "tests/sharpen/block_fixture.hpp"
@@ -76,13 +76,13 @@ TEST_CASE("the bilateral target keeps a flat vertex and lifts a rounded ridge to
   {
     TriangleMesh flat = roof(h, 10, 0.0);
     for (auto& v : flat.vertices) v.z() = 0.0;
-    const auto adj = build_adjacency(flat);
+    const auto adj = mesh_adjacency(flat);
     const int centre = 5 * 11 + 5;
     CHECK((bilateral_target(flat, adj, centre, sigma, sigma, 2 * sigma) - flat.vertices[centre]).norm() < 1e-12);
   }
   const double sag = 0.4 * h;
   const TriangleMesh m = roof(h, 10, sag);
-  const auto adj = build_adjacency(m);
+  const auto adj = mesh_adjacency(m);
   const int centre = 5 * 11 + 5;  // on the lowered ridge, x = 0
   const Vec3 target = bilateral_target(m, adj, centre, sigma, sigma, 2 * sigma);
   // Towards the sharp ridge at z = 0 (the two planes' intersection): the sag shrinks, x stays.
