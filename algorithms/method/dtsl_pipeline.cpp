@@ -198,9 +198,7 @@ class DtslPipeline final : public Reconstructor {
       clock.restart();
       DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
       // The data do not change between the refine-on-flip rounds: their noise is estimated once.
-      DisplacementOptions round_displace = options_.displace;
-      if (round_displace.noise_sigma < 0) round_displace.noise_sigma = dr.summary["noise_sigma"].get<double>();
-      if (round_displace.data_spacing <= 0) round_displace.data_spacing = dr.summary["data_spacing"].get<double>();
+      const DataScale scale = dr.scale;
       nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), flip_seconds = nlohmann::json::array();
       for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
         std::vector<Vec3> focus;
@@ -231,7 +229,7 @@ class DtslPipeline final : public Reconstructor {
           break;
         }
         part.restart();
-        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, round_displace);
+        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, options_.displace, &scale);
         for (const char* key : {"noise_estimated", "noise_estimate"})  // what the figure came from
           if (dr.summary.contains(key)) again.summary[key] = dr.summary[key];
         round_seconds["displace"] = part.seconds();
