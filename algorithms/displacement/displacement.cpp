@@ -88,8 +88,9 @@ std::vector<int> hole_vertices(const MeshLocator& locator, const VertexFilters& 
   return holes;
 }
 
-// The filter's record: widths, degrees, noise.
-void describe_filter(const VertexFilters& filters, const DataScale& scale, bool measured, nlohmann::json& s) {
+// The filter's record: widths, degrees (over the vertices that kept their filter: `known`), noise.
+void describe_filter(const VertexFilters& filters, const std::vector<char>& known, const DataScale& scale,
+                     bool measured, nlohmann::json& s) {
   s["sigma"] = filters.base_width;
   s["data_spacing"] = scale.spacing;
   s["base_filter_fits"] = filters.base_fits;
@@ -101,8 +102,8 @@ void describe_filter(const VertexFilters& filters, const DataScale& scale, bool 
   if (measured && scale.estimate) s["noise_estimate"] = scale.estimate->summary();
   double smean = 0.0, smax = 0.0;
   int degrees[3] = {0, 0, 0}, filtered_vertices = 0;
-  for (std::size_t v = 0; v < filters.known.size(); ++v) {
-    if (!filters.known[v]) continue;  // hole vertices have no filter
+  for (std::size_t v = 0; v < known.size(); ++v) {
+    if (!known[v]) continue;  // hole vertices have no filter
     smean += filters.width[v], smax = std::max(smax, filters.width[v]);
     ++degrees[filters.degree[v]], ++filtered_vertices;
   }
@@ -181,9 +182,9 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
                             options.fine_residual_passes, r.scale.noise_sigma > 0, d);
   nlohmann::json s = {{"method", options.filter}, {"points", points.size()}, {"vertices", base.vertices.size()},
                       {"faces", base.faces.size()}};
-  describe_filter(filters, r.scale, scale == nullptr, s);
   std::vector<char> known = filters.known;
   r.hole_vertices = hole_vertices(locator, filters, options.rim_offset, known, d, s);
+  describe_filter(filters, known, r.scale, scale == nullptr, s);
   // Holes: the harmonic fill, so the displaced surface continues across without a step at the rim.
   HoleTreatmentReport holes;
   if (!r.hole_vertices.empty()) holes.fill = harmonic_fill(locator.vertex_neighbours(), known, d);
