@@ -6,6 +6,7 @@
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/evolution.hpp"
 #include "algorithms/method/dtsl_presets.hpp"
+#include "algorithms/method/refine_on_flip.hpp"
 #include "algorithms/method/refinement_guard.hpp"
 #include "algorithms/method/stage_checks.hpp"
 #include "algorithms/method/tmesh_lines.hpp"
@@ -195,64 +196,21 @@ class DtslPipeline final : public Reconstructor {
     if (options_.displacement) {
       context.stage_started("D-Map", "displacing the mesh onto the data");
       clock.restart();
-      DisplacementResult dr = displace_mesh(f, mi->mesh, points, options_.displace);
-      // The data do not change between the refine-on-flip rounds: their noise is estimated once.
-      DisplacementOptions round_displace = options_.displace;
-      if (round_displace.noise_sigma < 0) round_displace.noise_sigma = dr.summary["noise_sigma"].get<double>();
-      if (round_displace.data_spacing <= 0) round_displace.data_spacing = dr.summary["data_spacing"].get<double>();
-      nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), flip_seconds = nlohmann::json::array();
-      for (int round = 0; round < options_.flip_refinements && dr.needs_refinement; ++round) {
-        std::vector<Vec3> focus;
-        for (int v : dr.flipped_vertices) focus.push_back(mi->mesh.vertices[v]);
-        FinalRefinementOptions refine = options_.evolution.refinement;
-        refine.target_level = std::min(f.tmesh().finest_leaf_level() + 1, f.tmesh().max_depth());
-        Stopwatch part;
-        RefinedLevelSet refined = refine_level_set(f, level_set_points, refine, options_.evolution.solver_plugin(), focus,
-                                                   WhenNothingToSplit::skip_fit);
-        nlohmann::json round_seconds = {{"refine", part.seconds()}};
-        if (refined.report.rounds == 0) break;  // nothing left to refine near the flips
-        int halvings = 0;
-        std::string refined_fallback;
-        double refined_step = step;
-        std::optional<PolygonizeResult> base;
-        try {
-          part.restart();
-          base = polygonize(refined.level_set, level_set_points, refined_step, halvings, refined_fallback);
-          round_seconds["polygonize"] = part.seconds();
-        } catch (const AlgorithmError&) {
-          flips.push_back("polygonizer failed: refused");
-          break;
-        }
-        try {
-          check_stage_mesh("MT (refined near flips)", base->mesh, bounds);
-        } catch (const AlgorithmError&) {
-          flips.push_back("refined zero set out of bounds: refused");
-          break;
-        }
-        part.restart();
-        DisplacementResult again = displace_mesh(refined.level_set, base->mesh, points, round_displace);
-        for (const char* key : {"noise_estimated", "noise_estimate"})  // what the figure came from
-          if (dr.summary.contains(key)) again.summary[key] = dr.summary[key];
-        round_seconds["displace"] = part.seconds();
-        flip_seconds.push_back(round_seconds);  // where D-Map's time goes (docs/performance.md)
-        flips.push_back(again.flipped_faces.size());
-        // Refinement must not change the topology Phase 1 found (a fit near a thin part can open a
-        // spurious handle): such a round is refused and the loop ends.
-        const MeshStats before = mesh_stats(mi->mesh), after = mesh_stats(base->mesh);
-        if (after.euler_characteristic != before.euler_characteristic || after.components != before.components) {
-          flips.push_back("topology changed: refused");
-          break;
-        }
-        if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
-        f = std::move(refined.level_set);
-        step = refined_step;
-        fallback = refined_fallback;
-        retries = halvings;
-        mi = std::move(base);
-        dr = std::move(again);
-      }
-      dr.summary["flips_per_round"] = flips;
-      dr.summary["refinement_round_seconds"] = flip_seconds;
+      MeshedLevelSet current{std::move(f), std::move(*mi), step, retries, fallback};
+      FlipRefinement how;
+      how.rounds = options_.flip_refinements;
+      how.refine = options_.evolution.refinement;
+      how.solver = &options_.evolution.solver_plugin();
+      how.triangulate = [&](MeshedLevelSet& m) {
+        m.mi = std::move(*polygonize(m.f, level_set_points, m.step, m.halvings, m.fallback));
+      };
+      how.check = [&](TriangleMesh& mesh) { check_stage_mesh("MT (refined near flips)", mesh, bounds); };
+      DisplacementResult dr = displace_refining_on_flips(current, points, level_set_points, options_.displace, how);
+      f = std::move(current.f);
+      mi = std::move(current.mi);
+      step = current.step;
+      retries = current.halvings;
+      fallback = current.fallback;
       dr.summary["control_points"] = f.basis().size();
       result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
       // ... and MT's record describes that mesh (after an accepted round: the refined level set's).

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "algorithms/displacement/displacement.hpp"
+#include "algorithms/displacement/hole_treatment.hpp"
 #include "framework/core/error.hpp"
 #include "tests/displacement/implicits.hpp"
 #include "tests/displacement/support.hpp"
@@ -36,64 +37,44 @@ TEST_CASE("displacement: bad input throws AlgorithmError naming the problem", "[
 TEST_CASE("displacement options: check() names the field", "[displacement][errors]") {
   DisplacementOptions o;
   CHECK_NOTHROW(o.check());
-  o.sigma = -1;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("sigma"));
+  o.filter = "gausian";
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("filter") && Contains("gaussian"));
   o = DisplacementOptions();
-  o.support = 0.0;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("support"));
+  o.hole_fill = "zero";
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("hole_fill") && Contains("thin_plate"));
   o = DisplacementOptions();
-  o.min_points = 0;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("min_points"));
+  o.sigma_factor = 0.0;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("sigma_factor"));
   o = DisplacementOptions();
-  o.curvature_factor = -0.5;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("curvature_factor"));
+  o.residual_passes = -1;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("residual_passes"));
+  o = DisplacementOptions();
+  o.fine_residual_passes = -1;
+  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("fine_residual_passes"));
   o = DisplacementOptions();
   o.rim_offset = -0.1;
   CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_offset"));
-  o = DisplacementOptions();
-  o.rim_min_feet = 0;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_min_feet"));
-  o = DisplacementOptions();
-  o.rim_min_hole_vertices = 0;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_min_hole_vertices"));
-  o = DisplacementOptions();
-  o.rim_rings = -1;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("rim_rings"));
-  o = DisplacementOptions();
-  o.projection.newton_max_iterations = 0;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("newton_max_iterations"));
-  o = DisplacementOptions();
-  o.projection.locator.snap_tolerance = 0.5;
-  CHECK_THROWS_MATCHES_TEXT(o.check(), ConfigError, Contains("snap_tolerance"));
 }
 
-TEST_CASE("displacement plugin: registered, options listed, runs", "[displacement]") {
+TEST_CASE("displacement plugins: registered, every filter and hole treatment runs", "[displacement]") {
   register_displacers();
   register_displacers();  // idempotent
-  REQUIRE(displacers().contains("gaussian"));
-  auto d = displacers().create("gaussian", "test");
-  struct Names final : FieldVisitor {
-    std::vector<std::string> names;
-    void field(const char* n, bool&, const char* doc) override { add(n, doc); }
-    void field(const char* n, int&, const char* doc) override { add(n, doc); }
-    void field(const char* n, double&, const char* doc) override { add(n, doc); }
-    void field(const char* n, std::string&, const char* doc) override { add(n, doc); }
-    void field(const char* n, std::vector<double>&, const char* doc) override { add(n, doc); }
-    void add(const char* n, const char* doc) {
-      names.push_back(n);
-      CHECK(std::string(doc).size() > 10);
-    }
-  } names;
-  d->options().visit(names);
-  CHECK(std::find(names.names.begin(), names.names.end(), "sigma") != names.names.end());
-  CHECK(std::find(names.names.begin(), names.names.end(), "snap_tolerance") != names.names.end());
+  CHECK(displacement_filters().names() == std::vector<std::string>{"adaptive", "gaussian"});
+  CHECK(hole_treatments().names() == std::vector<std::string>{"harmonic", "membrane", "thin_plate"});
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.08);
   std::vector<Vec3> pts;
   for (const Vec3& v : fibonacci_directions(500)) pts.push_back(0.62 * v);
-  const DisplacementResult r = d->displace(f, base, pts);
-  CHECK(r.summary["method"] == "gaussian");
-  CHECK(r.summary["vertices"].get<std::size_t>() == base.vertices.size());
+  for (const std::string& filter : displacement_filters().names())
+    for (const std::string& fill : hole_treatments().names()) {
+      DisplacementOptions o;
+      o.filter = filter;
+      o.hole_fill = fill;
+      const DisplacementResult r = displace_mesh(f, base, pts, o);
+      CHECK(r.summary["method"] == filter);
+      CHECK(r.summary["vertices"].get<std::size_t>() == base.vertices.size());
+      CHECK(r.summary["errors_after"]["e_avr"].get<double>() < 0.5 * r.summary["errors_before"]["e_avr"].get<double>());
+    }
 }
 
 namespace {

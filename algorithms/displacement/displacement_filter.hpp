@@ -1,0 +1,82 @@
+// The displacement filter (paper §3.2) as plugins: each vertex's d(v) is a weighted sum of the data's
+// displacements d_k over the foot points near it (foot_neighbourhood.hpp). Registered filters:
+//   gaussian  the paper's Gaussian mean, sigma_factor x the mean edge length wide;
+//   adaptive  (ours, the default) measures the data's noise (noise_estimate.hpp): on noisy data each
+//             vertex picks its own width by the intersection of confidence intervals and fits a local
+//             linear function over the wider widths (Katkovnik's LPA-ICI); on noise-free data the base
+//             width is at least the data's median spacing and fits a plane (data sparser than the mesh
+//             ripple at the paper's width), and the paper's narrow mean then follows the creases
+//             through the fine residual passes (residual_passes.hpp).
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "algorithms/displacement/foot_neighbourhood.hpp"
+#include "algorithms/displacement/noise_estimate.hpp"
+#include "algorithms/displacement/projection.hpp"
+#include "framework/config/options.hpp"
+#include "framework/core/types.hpp"
+#include "framework/registry/registry.hpp"
+
+namespace dtsl {
+
+/// What a filter measured of the data: measured once per run, the refine-on-flip rounds reuse it.
+struct DataScale {
+  double noise_sigma = 0.0;               ///< noise along the normal (frame units); 0: noise-free
+  double spacing = 0.0;                   ///< the data's median spacing; 0: not measured
+  std::optional<NoiseEstimate> estimate;  ///< the estimate the figures came from, if one was made
+  double seconds = 0.0;
+};
+
+/// What a filter sees: the base mesh M_0, the projection of the data onto it, and grad f's normals.
+struct FilterInput {
+  const TriangleMesh& base;
+  const ProjectionResult& projection;
+  const std::vector<Vec3>& normals;                  ///< per base vertex, unit
+  const std::vector<std::vector<int>>& neighbours;   ///< per base vertex, its one-ring
+  double mean_edge = 0.0;                            ///< the base mesh's mean edge length
+  double paper_width = 0.0;                          ///< sigma_factor x mean_edge
+  const DataScale& scale;
+};
+
+/// Each vertex's filter.
+struct VertexFilters {
+  std::vector<FilterTaps> taps;        ///< empty for a hole vertex (no data within the support)
+  std::vector<char> known;             ///< 1 where taps are set
+  std::vector<double> width;           ///< the width each vertex's filter took
+  std::vector<int> degree;             ///< the degree of the local polynomial it fits (0: a mean)
+  std::vector<double> one_sidedness;   ///< the base filter's FootNeighbourhoods::one_sidedness
+  double base_width = 0.0;             ///< the narrowest width
+  bool base_fits = false;              ///< noise-free data, base width fitting a plane: the fine passes apply
+  std::unique_ptr<FootNeighbourhoods> feet;  ///< the feet the taps came from (the fine passes' narrow taps)
+};
+
+class DisplacementFilter {
+ public:
+  virtual ~DisplacementFilter() = default;
+  Options& options() { return options_; }
+  /// The data's noise and spacing, as far as this filter needs them.
+  virtual DataScale measure(const std::vector<Vec3>& points) const = 0;
+  /// Throws AlgorithmError when no foot point is valid.
+  virtual VertexFilters build(const FilterInput& in) const = 0;
+
+ private:
+  NoOptions options_;
+};
+
+Registry<DisplacementFilter>& displacement_filters();
+
+/// The ladder of widths a filter tries and whether the base width fits a plane (filter_taps.cpp).
+struct FilterLadder {
+  std::vector<double> widths;  ///< increasing; more than one: ICI picks per vertex (noisy data)
+  bool base_fits = false;
+  double noise_sigma = 0.0;
+};
+/// Every vertex's taps over `ladder` (ICI where it has several widths). Throws AlgorithmError when no
+/// foot point is valid.
+VertexFilters build_vertex_filters(const FilterInput& in, const FilterLadder& ladder);
+
+}  // namespace dtsl

@@ -1,0 +1,47 @@
+// Paper §3.2's fallback for flipped triangles: where displacing MI flips triangles, refine the level set
+// one octree level near the flips (final refinement with the flips as focus), triangulate it again and
+// displace again, at most `rounds` times. A round is kept only when it flips fewer triangles; one that
+// cannot refine, cannot be triangulated, leaves the data's bounds or changes the topology Phase 1 found
+// (a fit near a thin part can open a spurious handle) ends the loop.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "algorithms/displacement/displacement.hpp"
+#include "algorithms/evolution/final_refinement.hpp"
+#include "algorithms/polygonize/polygonizer.hpp"
+#include "algorithms/tspline/tspline.hpp"
+
+namespace dtsl {
+
+/// A level set and its triangulation MI, the base the displacement starts from.
+struct MeshedLevelSet {
+  TSpline f;
+  PolygonizeResult mi;
+  double step = 0.0;     ///< the marching step MI was made with
+  int halvings = 0;      ///< the step halvings it took
+  std::string fallback;  ///< why the fallback polygonizer made it ("": it did not)
+};
+
+/// How a round refines and triangulates: the pipeline's refinement, solver and polygonizers.
+struct FlipRefinement {
+  int rounds = 2;
+  FinalRefinementOptions refine;  ///< its target_level is set per round, one below the finest leaves
+  LevelSetSolver* solver = nullptr;
+  /// Triangulates MeshedLevelSet::f into its mi, starting at its step (filled in, halvings 0, no
+  /// fallback); throws AlgorithmError when nothing meshes.
+  std::function<void(MeshedLevelSet&)> triangulate;
+  /// Throws AlgorithmError for a triangulation outside the data's bounds.
+  std::function<void(TriangleMesh&)> check;
+};
+
+/// Displaces `current.mi` onto `points` and refines on flips as above; `current` ends as the base of
+/// the displacement returned. The summary gains `flips_per_round` (flipped faces per round, or why a
+/// round was refused) and `refinement_round_seconds`.
+DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
+                                              const std::vector<Vec3>& level_set_points,
+                                              const DisplacementOptions& options, const FlipRefinement& how);
+
+}  // namespace dtsl
