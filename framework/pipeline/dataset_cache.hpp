@@ -9,7 +9,8 @@
 namespace dtsl {
 
 /// Writes `dataset` into folder `dir` (created) in `frame`, which dataset.json records ("files_frame");
-/// dataset.json last, so its presence means complete.
+/// in the input's frame also the [-1,1]^3 points and truth the runs read, under normalised/. dataset.json
+/// last, so its presence means complete.
 void write_dataset(const std::string& dir, const Dataset& dataset, FilesFrame frame);
 
 /// Reads a folder written by write_dataset, back in the [-1,1]^3 frame whatever its files' frame, with
