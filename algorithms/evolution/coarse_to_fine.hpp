@@ -43,7 +43,7 @@ struct CoarseToFineOptions final : Options {
             "f onto the finer T-mesh (level_set_transfer.hpp): 'quasi_interpolation' (the old f at the Greville "
             "points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus test, but worse "
             "after the round: chamfer fandisk 7.73e-3 -> 8.74e-3, holed bunny 1.86e-3 -> 2.30e-3, "
-            "configs/ablation_transfer.yaml)");
+            "measured on fandisk and the holed bunny)");
   }
   void check() const override {
     check_range("levels", levels, 0, 10);

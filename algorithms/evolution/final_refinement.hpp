@@ -73,12 +73,12 @@ struct FinalRefinementOptions final : Options {
     v.field("transfer", transfer,
             "f onto the refined T-mesh before the fit (level_set_transfer.hpp): 'quasi_interpolation' (the old f "
             "at the Greville points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus "
-            "test; the fit then lands about where it does from the quasi-interpolant: configs/ablation_transfer.yaml)");
+            "test; the fit then lands about where it does from the quasi-interpolant: measured on fandisk and the holed bunny)");
     v.field("local_fit", local_fit,
             "with focus points (D-Map's refine-on-flip rounds), fit only the control points whose support overlaps a "
             "leaf the refinement created, from the rows that depend on them (false, default: refit all of f; "
             "local is 2-5x cheaper per round but the global refit's gain elsewhere is lost: "
-            "configs/ablation_flip_local_fit.yaml)");
+            "measured on fandisk, bunny, block, torus)");
   }
   void check() const override;
 };

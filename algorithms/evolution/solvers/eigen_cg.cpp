@@ -19,7 +19,7 @@ struct EigenCgOptions final : Options {
   // Five digits. Looser solves are cheaper (a warm-started CG reaches 1e-3 in ~70 iterations where
   // 1e-6 takes 130-1400) but unstable at scale: on 100k armadillo points 1e-3 and 1e-4 let errors in
   // weakly determined coefficients grow step by step into hundreds of spurious handles, 1e-5 evolves as
-  // 1e-6 does at half the solve time (configs/ablation_solver_tolerance.yaml; docs/performance.md).
+  // 1e-6 does at half the solve time (measured at 100k points).
   double tolerance = 1e-5;
   int max_iterations = 2000;
   std::string preconditioner = "jacobi";
