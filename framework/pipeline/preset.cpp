@@ -45,6 +45,9 @@ void apply_preset(Reconstructor& pipeline, const std::string& type, const std::s
   for (const Preset& p : known) {
     names.push_back(p.name);
     if (p.name != name) continue;
+    // A preset that sets nothing (`default`) leaves the options as they are, unchecked: a pipeline
+    // whose defaults are incomplete (`external` without its command) gets them after the preset.
+    if (p.values.empty()) return;
     YAML::Node map(YAML::NodeType::Map);
     for (const PresetValue& v : p.values) {
       try {

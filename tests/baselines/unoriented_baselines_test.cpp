@@ -21,6 +21,7 @@
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
+#include "framework/pipeline/preset.hpp"
 #include "framework/pipeline/reconstructor.hpp"
 #include "tests/baselines/pipeline_helpers.hpp"
 
@@ -207,6 +208,24 @@ TEST_CASE("external runs a command and reads its mesh back", "[baselines][unorie
   CHECK(result.summary.at("normals_source") == "none");
   CHECK(result.stages.at(0).summary.at("exit_status") == 0);
   CHECK(fs::is_empty(tmp));  // the points, the mesh and the logs are gone
+}
+
+TEST_CASE("every pipeline takes the default preset before its options, as a run applies them", "[baselines][preset]") {
+  // execute_run applies the `default` preset to every pipeline entry, then the entry's options:
+  // `default` sets nothing and must not judge options that come after it (external's command).
+  register_all_plugins();
+  for (const std::string& type : reconstructors().names()) {
+    INFO(type);
+    auto r = reconstructors().create(type, "test");
+    CHECK_NOTHROW(apply_preset(*r, type, "default", "test"));
+  }
+  const ScratchDir dir;
+  const std::string stub = dir.script("stub.sh", kTetrahedronScript);
+  auto r = create("external");
+  apply_preset(*r, "external", "default", "test");
+  set(*r, "command", stub + " {in} {out}");
+  set(*r, "output", "off");
+  CHECK(r->reconstruct(sphere(200), RunContext{}).mesh.faces.size() == 4);
 }
 
 TEST_CASE("external writes the points (and normals on request) where {in} says", "[baselines][unoriented][external]") {
