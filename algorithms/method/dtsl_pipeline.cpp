@@ -201,8 +201,11 @@ class DtslPipeline final : public Reconstructor {
       how.rounds = options_.flip_refinements;
       how.refine = options_.evolution.refinement;
       how.solver = &options_.evolution.solver_plugin();
-      how.triangulate = [&](MeshedLevelSet& m) {
-        m.mi = std::move(*polygonize(m.f, level_set_points, m.step, m.halvings, m.fallback));
+      how.triangulate = [&](MeshedLevelSet& m) {  // at m.step, with the polygonizer that made MI
+        const std::string& name = m.fallback.empty() ? options_.polygonizer : options_.polygonizer_fallback;
+        auto polygonizer = polygonizers().create(name, "polygonizer");
+        apply_assignment(polygonizer->options(), "step", std::to_string(m.step), "polygonizer");
+        m.mi = polygonizer->polygonize(m.f, level_set_points);
       };
       how.check = [&](TriangleMesh& mesh) { check_stage_mesh("MT (refined near flips)", mesh, bounds); };
       DisplacementResult dr = displace_refining_on_flips(current, points, level_set_points, options_.displace, how);

@@ -43,19 +43,27 @@ DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std
     std::optional<TSpline> refined = refined_near_flips(current, dr, level_set_points, how);
     nlohmann::json round_seconds = {{"refine", part.seconds()}};
     if (!refined) break;  // nothing left to refine near the flips
-    MeshedLevelSet next{std::move(*refined), {}, current.step, 0, ""};
+    MeshedLevelSet next{std::move(*refined), PolygonizeResult{}, current.step, current.halvings, current.fallback};
     try {
       part.restart();
       how.triangulate(next);
       round_seconds["polygonize"] = part.seconds();
     } catch (const AlgorithmError&) {
-      flips.push_back("polygonizer failed: refused");
+      seconds.push_back(round_seconds);
+      flips.push_back("does not mesh at MI's step: refused");
       break;
     }
     try {
       how.check(next.mi.mesh);
     } catch (const AlgorithmError&) {
       flips.push_back("refined zero set out of bounds: refused");
+      break;
+    }
+    // The refinement may not change the topology Phase 1 found: judged on the new MI, before the
+    // displacement is paid for.
+    if (!same_topology(current.mi.mesh, next.mi.mesh)) {
+      seconds.push_back(round_seconds);
+      flips.push_back("topology changed: refused");
       break;
     }
     part.restart();
@@ -65,10 +73,6 @@ DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std
     round_seconds["displace"] = part.seconds();
     seconds.push_back(round_seconds);  // where D-Map's time goes (docs/performance.md)
     flips.push_back(again.flipped_faces.size());
-    if (!same_topology(current.mi.mesh, next.mi.mesh)) {
-      flips.push_back("topology changed: refused");
-      break;
-    }
     if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
     current = std::move(next);
     dr = std::move(again);

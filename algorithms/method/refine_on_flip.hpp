@@ -1,7 +1,7 @@
 // Paper §3.2's fallback for flipped triangles: where displacing MI flips triangles, refine the level set
 // one octree level near the flips (final refinement with the flips as focus), triangulate it again and
 // displace again, at most `rounds` times. A round is kept only when it flips fewer triangles; one that
-// cannot refine, cannot be triangulated, leaves the data's bounds or changes the topology Phase 1 found
+// cannot refine, cannot be triangulated at MI's step, leaves the data's bounds or changes the topology Phase 1 found
 // (a fit near a thin part can open a spurious handle) ends the loop.
 #pragma once
 
@@ -30,8 +30,10 @@ struct FlipRefinement {
   int rounds = 2;
   FinalRefinementOptions refine;  ///< its target_level is set per round, one below the finest leaves
   LevelSetSolver* solver = nullptr;
-  /// Triangulates MeshedLevelSet::f into its mi, starting at its step (filled in, halvings 0, no
-  /// fallback); throws AlgorithmError when nothing meshes.
+  /// Triangulates MeshedLevelSet::f into its mi at exactly its step, with the polygonizer that made the
+  /// current MI (its fallback named); throws AlgorithmError when f does not mesh there. No step halving:
+  /// a refined zero set with detail below MI's step is one the displacement should carry instead
+  /// (paper §3), and halving would multiply the mesh and its cost for a round that is rarely kept.
   std::function<void(MeshedLevelSet&)> triangulate;
   /// Throws AlgorithmError for a triangulation outside the data's bounds.
   std::function<void(TriangleMesh&)> check;
@@ -39,7 +41,8 @@ struct FlipRefinement {
 
 /// Displaces `current.mi` onto `points` and refines on flips as above; `current` ends as the base of
 /// the displacement returned. The summary gains `flips_per_round` (flipped faces per round, or why a
-/// round was refused) and `refinement_round_seconds`.
+/// round was refused) and `refinement_round_seconds`. The topology is judged on the refined MI before
+/// it is displaced.
 DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
                                               const std::vector<Vec3>& level_set_points,
                                               const DisplacementOptions& options, const FlipRefinement& how);
