@@ -5,7 +5,7 @@
 #   scripts/sanitize.sh          the fast subset CI runs: the framework's and the T-spline's tests, the
 #                                robustness corpus through `dtsl reconstruct
 #                                --pipeline pcl_poisson` and `dtsl run` (every reader and the config
-#                                loader on every bad file), crash safety, and each fuzz target for 25 s
+#                                loader on every bad file), crash safety, and each fuzz target for 10 s
 #   scripts/sanitize.sh --full   every test executable and the corpus through the method too (about an
 #                                hour on 2 cores: the evolution's and the method's tests run 10-25x
 #                                slower under the sanitizers, the method's corpus 15 minutes)
@@ -61,10 +61,10 @@ else
   ctest --test-dir build-asan --output-on-failure -j2 --timeout 2400 -R "$pattern"
 fi
 
-step "fuzz targets, 25 s each"
+step "fuzz targets, 10 s each"
 unset ASAN_OPTIONS LSAN_OPTIONS UBSAN_OPTIONS
 # fuzz_pcd is left out until PCD bodies are decoded without PCL's reader: fuzz/open_findings/ holds an
 # input that still crashes pcl::PCDReader::read behind our validation (fuzz/README.md).
-ARTIFACTS="$PWD/build-asan/fuzz-artifacts" fuzz/run.sh build-asan 25 ply ply_binary obj off xyz experiment
+ARTIFACTS="$PWD/build-asan/fuzz-artifacts" fuzz/run.sh build-asan 10 ply ply_binary obj off xyz experiment
 
 step "done"
