@@ -70,7 +70,7 @@ LeastSquaresSystem first_step_system(const std::vector<Vec3>& points, const Evol
     rhs.push_back(1.0 - s.band_gradient[m].squaredNorm());
   }
   rows.add_gradient_rows(s.band, direction, rhs, o.w_distance);
-  return rows.finish(Smoothness::tikhonov, o.w_smooth);
+  return rows.finish(o.w_smooth);
 }
 
 }  // namespace

@@ -22,7 +22,6 @@ struct CoarseToFineOptions final : Options {
   double data_reach = 2.0;
   int max_iterations = 60;
   double w_distance = 0.1;
-  std::string transfer = "quasi_interpolation";
 
   void visit(FieldVisitor& v) override {
     v.field("levels", levels,
@@ -39,11 +38,6 @@ struct CoarseToFineOptions final : Options {
             "fandisk cut, bunny, block, torus: the genus of the first evolution kept, e_avr of MI 20-40% lower "
             "than at 1); the first evolution "
             "keeps the topology-safe weight, a round starting near the data can follow it more closely");
-    v.field("transfer", transfer,
-            "f onto the finer T-mesh (level_set_transfer.hpp): 'quasi_interpolation' (the old f at the Greville "
-            "points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus test, but worse "
-            "after the round: chamfer fandisk 7.73e-3 -> 8.74e-3, holed bunny 1.86e-3 -> 2.30e-3, "
-            "measured on fandisk and the holed bunny)");
   }
   void check() const override {
     check_range("levels", levels, 0, 10);
@@ -51,7 +45,6 @@ struct CoarseToFineOptions final : Options {
     check_range("data_reach", data_reach, 0.0, 100.0);
     check_range("max_iterations", max_iterations, 0, 100000);
     require(w_distance == -1.0 || w_distance >= 0.0, "w_distance", "must be -1 (the evolution's) or >= 0");
-    check_one_of("transfer", transfer, {"quasi_interpolation", "least_squares"});
   }
 };
 

@@ -98,11 +98,6 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   LevelSetSolver& solver = options.solver_plugin();
   const TSplineBasis& basis = initial.basis();
   const Octree& tmesh = basis.octree();
-  const Smoothness smoothness = smoothness_from_string(options.smoothness);
-  std::vector<std::array<int, 2>> edges;
-  if (smoothness == Smoothness::first_order && options.w_smooth > 0.0) edges = control_edges(basis);
-  double finest_side = std::numeric_limits<double>::infinity();
-  for (int l = 0; l < tmesh.leaf_count(); ++l) finest_side = std::min(finest_side, tmesh.leaf_side(l));
 
   ZeroSetSampling sampling;
   sampling.subdivision = options.subdivision;
@@ -203,12 +198,9 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       break;
     }
 
-    // CFL step.
+    // CFL step, in each sample's own leaf: dt = cfl min_j h_j / |v_j| (big steps through coarse empty space).
     double dt = options.max_time_step;
-    if (max_speed > 0.0) {
-      const double cfl_dt = options.cfl_cell == "local" ? options.cfl * min_ratio : options.cfl * finest_side / max_speed;
-      dt = std::min(dt, cfl_dt);
-    }
+    if (max_speed > 0.0) dt = std::min(dt, options.cfl * min_ratio);
     record.time_step = dt;
 
     // Least-squares rows for c'.
@@ -232,7 +224,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       }
       rows.add_gradient_rows(samples.band, direction, target, options.w_distance, samples.band_site, gradients);
     }
-    const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
+    const LeastSquaresSystem system = rows.finish(options.w_smooth);
     timings.rows += part.seconds();
     record.unknowns = system.unknowns;
 

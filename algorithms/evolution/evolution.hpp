@@ -9,7 +9,7 @@
 //
 //   E(c') = sum_j (f'(x_j) + v(x_j) |grad f(x_j)|)^2 / J
 //         + w_D sum_m (2 dt grad f(y_m) . grad f'(y_m) + |grad f(y_m)|^2 - 1)^2 / M
-//         + w_S c'^T R c' / n
+//         + w_S |c'|^2 / n
 //
 // (x_j on the zero set, y_m in a band around it: zero_set.hpp), solved by a LevelSetSolver plugin,
 // then takes the explicit Euler step c <- c + dt c' with a CFL step dt, guarded against zero crossings
@@ -52,12 +52,10 @@ struct EvolutionOptions final : Options {
   /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data
   /// about 2x closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus).
   double w_distance = 1.0;
-  double w_smooth = 1e-3;                ///< weight w_S of the smoothness term c'^T R c' (docs/design.md)
-  std::string smoothness = "tikhonov";   ///< R = I ('first_order': graph Laplacian of the T-mesh edges)
-  double cfl = 0.5;                      ///< a step moves the zero set by at most cfl x the cell size
-  /// 'local': dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j (big steps through coarse empty space);
-  /// 'finest': dt = cfl h_min / max|v| (docs/design.md).
-  std::string cfl_cell = "local";
+  double w_smooth = 1e-3;                ///< weight w_S of the smoothness term |c'|^2 (docs/design.md)
+  /// A step moves the zero set by at most cfl x the cell size: dt = cfl min_j h_j / |v_j|, h_j the leaf
+  /// at x_j (big steps through coarse empty space).
+  double cfl = 0.5;
   double max_time_step = 0.5;            ///< velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate
   int max_iterations = 200;              ///< iteration cap of the evolution
   double velocity_tolerance = 1e-3;      ///< at rest when the mean |v| on the zero set falls below this

@@ -22,9 +22,7 @@ EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
   solver = other.solver;
   w_distance = other.w_distance;
   w_smooth = other.w_smooth;
-  smoothness = other.smoothness;
   cfl = other.cfl;
-  cfl_cell = other.cfl_cell;
   max_time_step = other.max_time_step;
   max_iterations = other.max_iterations;
   velocity_tolerance = other.velocity_tolerance;
@@ -137,9 +135,7 @@ void EvolutionOptions::check() const {
   if (!level_set_solvers().contains(solver)) level_set_solvers().create(solver, "solver");
   check_non_negative("w_distance", w_distance);
   check_non_negative("w_smooth", w_smooth);
-  check_one_of("smoothness", smoothness, {"tikhonov", "first_order"});
   check_range("cfl", cfl, 1e-3, 10.0);
-  check_one_of("cfl_cell", cfl_cell, {"local", "finest"});
   check_range("max_time_step", max_time_step, 1e-9, 100.0);
   check_range("max_iterations", max_iterations, 0, 100000);
   check_non_negative("velocity_tolerance", velocity_tolerance);

@@ -1,7 +1,8 @@
 // Phase 3 of the method (paper §4, docs/design.md §4): the data-driven bilateral evolution that recovers
 // sharp features of the displaced mesh.
 //
-// Each iteration: foot points q_k of all data on the current mesh (Fig. 2 cases, Eq. 6); minimise
+// Each iteration: foot points q_k of all data on the current mesh (Fig. 2 cases, Eq. 6) and its sharp
+// vertices (sharp_vertices.hpp, detected anew on every iteration's mesh); minimise
 //   F(V') = E_dist + w E_bila                                                             (Eq. 4)
 //   E_dist = sum_k |q_k + sum_{j in phi(p_k)} lambda_j v'_j - p_k|^2                        (Eq. 5, 6)
 //   E_bila = sum_i |v_i + v'_i - v'_i target|^2, the target from the bilateral filter      (Eq. 7, 8)
@@ -45,8 +46,6 @@ struct BilateralEvolutionOptions final : Options {
   /// 2 (ours): fandisk's corners go on converging after a slow step (e_max 10.0e-3 -> 9.0e-3), the noisy
   /// armadillo stops one step later (configs/ablation_bilateral_stop.yaml).
   int patience = 2;
-  /// Detect the sharp vertices again on every iteration's mesh (otherwise once, on the input).
-  bool redetect = true;
   /// Foot-point case of Fig. 2: barycentric coordinates below this count as zero.
   double snap = 1e-6;
   /// Solver plugin of the linear least-squares problem: eigen_ldlt or ceres.

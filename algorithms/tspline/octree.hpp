@@ -41,7 +41,6 @@ struct TMeshOptions final : Options {
   int points_per_cell = 64;   // split a cell holding more data points than this
   double margin = 0.25;       // domain = [-1-margin, 1+margin]^3 around the normalised data
   std::string balance = "face";
-  bool uniform = false;       // ignore the data: full octree, a uniform grid of 2^max_depth cells per axis
 
   void visit(FieldVisitor& v) override {
     v.field("max_depth", max_depth, "finest octree level; cells per axis there = 2^max_depth (paper: <= 6)");
@@ -50,7 +49,6 @@ struct TMeshOptions final : Options {
     v.field("margin", margin, "the domain is [-1-margin, 1+margin]^3 in the normalised frame");
     v.field("balance", balance,
             "2:1 balance between neighbours sharing a 'face', an 'edge' (and faces) or a 'vertex' (all)");
-    v.field("uniform", uniform, "uniform tensor-product grid of 2^max_depth cells per axis, data ignored");
   }
   void check() const override;
 };
@@ -132,13 +130,14 @@ class Octree {
 };
 
 /// The T-mesh for `points` (already in the [-1,1]^3 frame): split while a cell holds more than
-/// points_per_cell points (or is above min_depth) and is above max_depth, then balance. With
-/// options.uniform, the uniform grid. Throws ConfigError for bad options; AlgorithmError for fewer
-/// than 4 points, all points coinciding, a non-finite coordinate or a point outside the domain.
-/// Points all on a plane or a line are accepted: the mesh is refined along them only (tested).
+/// points_per_cell points (or is above min_depth) and is above max_depth, then balance. Throws
+/// ConfigError for bad options; AlgorithmError for fewer than 4 points, all points coinciding, a
+/// non-finite coordinate or a point outside the domain. Points all on a plane or a line are accepted: the mesh is refined along them only (tested).
 Octree build_octree(const std::vector<Vec3>& points, const TMeshOptions& options);
 
-/// The full octree of the given depth over [-1-margin, 1+margin]^3: the uniform tensor-product grid.
+/// The full octree of the given depth over [-1-margin, 1+margin]^3: the uniform tensor-product grid
+/// (tests; the method builds its T-mesh from the data). ConfigError for a depth outside
+/// [0, kMaxOctreeDepth] or a margin outside [0, 10].
 Octree uniform_octree(int depth, double margin);
 
 /// Splits the given leaves (leaf numbers of `octree`; those already at max_depth are left alone),
