@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/support.hpp"
@@ -89,13 +90,15 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
 
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
                                 const EvolutionOptions& options_in) {
-  EvolutionOptions options = options_in;  // the plugins are stateful (cached factorisations)
+  EvolutionOptions options = options_in;  // to_json() of the record visits its fields, which takes a mutable struct
   options.check();
   if (points.empty()) throw AlgorithmError("level-set evolution: no data points");
   Stopwatch clock;
   Timings timings;
   const Velocity& velocity = options.velocity_plugin();
-  LevelSetSolver& solver = options.solver_plugin();
+  // The stage's own solver (stateful: it may cache a factorisation between the steps).
+  const std::unique_ptr<LevelSetSolver> solver_instance = level_set_solvers().create(options.solver, "solver");
+  LevelSetSolver& solver = *solver_instance;
   const TSplineBasis& basis = initial.basis();
   const Octree& tmesh = basis.octree();
 
@@ -371,7 +374,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   }
 
   if (options.final_refinement) {
-    RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, stage.solver_plugin());
+    const std::unique_ptr<LevelSetSolver> solver = level_set_solvers().create(options.solver, "solver");
+    RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, *solver);
     result.level_set = std::move(refined.level_set);
     result.transferred = std::move(refined.transferred);
     result.summary["final_refinement"] = to_json(refined.report);

@@ -29,7 +29,7 @@ struct MeshedLevelSet {
 struct FlipRefinement {
   int rounds = 2;
   FinalRefinementOptions refine;  ///< its target_level is set per round, one below the finest leaves
-  LevelSetSolver* solver = nullptr;
+  std::string solver = "eigen_cg";  ///< the level-set solver plugin of the refits, created by the loop
   /// Triangulates MeshedLevelSet::f into its mi, starting at its step (filled in, halvings 0, no
   /// fallback); throws AlgorithmError when nothing meshes.
   std::function<void(MeshedLevelSet&)> triangulate;
@@ -39,7 +39,7 @@ struct FlipRefinement {
 
 /// Displaces `current.mi` onto `points` and refines on flips as above; `current` ends as the base of
 /// the displacement returned. The summary gains `flips_per_round` (flipped faces per round, or why a
-/// round was refused) and `refinement_round_seconds`.
+/// round was refused) and `refinement_round_seconds`. ConfigError for an unknown solver.
 DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
                                               const std::vector<Vec3>& level_set_points,
                                               const DisplacementOptions& options, const FlipRefinement& how);
