@@ -50,8 +50,8 @@ struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
   std::string fine_velocity;
   std::string solver = "eigen_cg";
-  /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data
-  /// about 2x closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus).
+  /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md §1: 1; less fits the
+  /// data closer but lets |grad f| collapse and adds handles: §8).
   double w_distance = 1.0;
   double w_smooth = 1e-3;                ///< weight w_S of the smoothness term |c'|^2 (docs/design.md)
   /// A step moves the zero set by at most cfl x the cell size: dt = cfl min_j h_j / |v_j|, h_j the leaf

@@ -49,13 +49,10 @@ struct FinalRefinementOptions final : Options {
             "a leaf the zero set crosses is refined if a data point lies within data_reach x its side of the "
             "surface in it");
     v.field("fit_iterations", fit_iterations,
-            "Gauss-Newton steps of the direct fit (0: refine and transfer only); measured on the bunny, 2-3 "
-            "steps change the mean distance by < 8% over 1, at 2-3x the time");
+            "Gauss-Newton steps of the direct fit (0: refine and transfer only; why 1: docs/design.md §8)");
     v.field("w_distance", w_distance,
             "weight w_D of the distance-field term |grad f|^2 = 1 (0.3, ours: the evolution's 1 holds the surface "
-            "at the evolved shape). Measured (Newton distance of the data, evolved -> refined): bunny 0.055 -> "
-            "0.050 at 1, 0.038 at 0.3, 0.029 at 0.1; fandisk cut 0.062 -> 0.062 at 1, 0.048 at 0.3, 0.036 at 0.1 "
-            "but with a spurious handle (genus 1)");
+            "at the evolved shape, less opens spurious handles: docs/design.md §8)");
     v.field("w_smooth", w_smooth, "weight w_S of the smoothness of each Gauss-Newton step");
     v.field("outlier_cells", outlier_cells,
             "data points farther than this many leaf sides from the level set are left out of the fit");

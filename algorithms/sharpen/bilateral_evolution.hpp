@@ -43,8 +43,8 @@ struct BilateralEvolutionOptions final : Options {
   double min_relative_decrease = 1e-3;
   /// Stop at the patience-th slow iteration in a row (that step is not taken; the slow ones before it
   /// are, as each still lowers e_avr). 1: stop at the first. A step that raises e_avr always stops.
-  /// 2 (ours): fandisk's corners go on converging after a slow step (e_max 10.0e-3 -> 9.0e-3), the noisy
-  /// armadillo stops one step later (configs/ablation_bilateral_stop.yaml).
+  /// 2 (ours): corners may go on converging after a slow step (docs/experiments.md, "The bilateral
+  /// evolution's stop").
   int patience = 2;
   /// Foot-point case of Fig. 2: barycentric coordinates below this count as zero.
   double snap = 1e-6;

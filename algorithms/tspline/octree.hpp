@@ -29,12 +29,12 @@ const char* to_string(Balance b);
 /// How the T-mesh is made from the data points (docs/design.md §1).
 ///
 /// Defaults (ours): points_per_cell = 64 puts the control point count in the paper's range (Table 1:
-/// n_t = 870-2550 for 6k-26k points): measured 1347 for 6k points on a sphere, 1446 for 6k and 4765
-/// for 26k points on a torus with 30x density variation; 128 gives 729 / 909 / 2352. min_depth = 3
-/// (cells of 0.31 with the default margin) keeps the empty space the evolving front crosses from
-/// being spanned by a handful of blending functions. Face balance is the docs/design.md rule; 'vertex'
-/// costs ~10% more control points and makes the T-mesh more regular (fewer distinct knot vectors a
-/// leaf), 'edge' lies between: all three give a C2 rational T-spline with a positive denominator.
+/// n_t = 870-2550 for 6k-26k points; the counts: docs/design.md §8). min_depth = 3 (cells of 0.31 with
+/// the default margin) keeps the empty space the evolving front crosses from being spanned by a handful
+/// of blending functions. Face balance is the docs/design.md rule; 'vertex' makes the T-mesh more
+/// regular at more control points, 'edge' lies between: all three give a C2 rational T-spline with a
+/// positive denominator. check() throws ConfigError naming the field (max_depth in [1, kMaxOctreeDepth],
+/// min_depth in [0, kMaxOctreeDepth], margin in [0, 10]).
 struct TMeshOptions final : Options {
   int max_depth = 6;          // finest level; the paper never goes beyond 6
   int min_depth = 3;          // every cell is split at least to this level (capped at max_depth)
