@@ -70,7 +70,7 @@ LeastSquaresSystem first_step_system(const std::vector<Vec3>& points, const Evol
     rhs.push_back(1.0 - s.band_gradient[m].squaredNorm());
   }
   rows.add_gradient_rows(s.band, direction, rhs, o.w_distance);
-  return rows.finish(Smoothness::tikhonov, o.w_smooth);
+  return rows.finish(o.w_smooth);
 }
 
 }  // namespace
@@ -101,13 +101,17 @@ int main(int argc, char** argv) {
     for (const std::string& name : datasets) {
       const std::vector<Vec3> points = dataset(name);
       EvolutionOptions base;
-      for (const auto& [k, v] : sets) apply_assignment(base, k, v, "--set");
+      // --set solver_KEY=VALUE: an option of the solvers of the one-step solve below; else of the stage.
+      std::vector<std::pair<std::string, std::string>> solver_sets;
+      for (const auto& [k, v] : sets) {
+        if (k.rfind("solver_", 0) == 0) solver_sets.emplace_back(k.substr(7), v);
+        else apply_assignment(base, k, v, "--set");
+      }
       {
         const LeastSquaresSystem system = first_step_system(points, base);
         for (const std::string& solver_name : solvers) {
-          // The solver's own options come from --set solver_... when --set solver=<it> chose it.
-          auto solver = solver_name == base.solver ? base.solver_plugin().clone()
-                                                   : level_set_solvers().create(solver_name, "--solvers");
+          auto solver = level_set_solvers().create(solver_name, "--solvers");
+          for (const auto& [k, v] : solver_sets) apply_assignment(solver->options(), k, v, "--set solver_");
           double best = 1e300;
           SolveReport report;
           for (int r = 0; r < repeat; ++r) {

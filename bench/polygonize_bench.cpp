@@ -39,9 +39,8 @@ int main(int argc, char** argv) {
         std::size_t faces = 0;
         for (int r = 0; r < repeats; ++r) {
           auto p = polygonizers().create(name, "bench");
-          apply_assignment(p->options(), "step", std::to_string(step), "bench");
           Stopwatch clock;
-          const PolygonizeResult result = p->polygonize(level.level_set, data.points.points);
+          const PolygonizeResult result = p->polygonize(level.level_set, data.points.points, step);
           best = std::min(best, clock.seconds());
           faces = result.mesh.faces.size();
         }

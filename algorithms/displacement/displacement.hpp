@@ -21,30 +21,25 @@
 namespace dtsl {
 
 struct DisplacementOptions final : Options {
-  /// The displacement filter (displacement_filter.hpp): `adaptive` (ours) or `gaussian` (the paper's).
-  /// configs/ablation_noise.yaml: the paper's filter follows noisy data closer (e_avr of MD 0.98 against
-  /// 1.98e-3 on the armadillo) and ends farther from the truth (chamfer 1.55 against 1.34e-3).
+  /// The displacement filter (displacement_filter.hpp): `adaptive` (ours) or `gaussian` (the paper's),
+  /// which follows noisy data closer and ends farther from the truth (docs/experiments.md, "Noise").
   std::string filter = "adaptive";
   /// The paper's Gaussian width, x the base mesh's mean edge length (~ the marching step delta): the
-  /// `gaussian` filter's width, the `adaptive` one's narrowest. configs/ablation_displacement_filter.yaml
-  /// (the paper's filter): 1.0 against 0.5 lowers fandisk cut's e_max 19.0 -> 11.5e-3 and chamfer 8.51
-  /// -> 7.96e-3, and raises the bunny's chamfer 1.99 -> 2.88e-3: less ripple, less detail.
+  /// `gaussian` filter's width, the `adaptive` one's narrowest. Wider: less ripple, less detail
+  /// (docs/experiments.md, "The displacement's filter").
   double sigma_factor = 0.5;
   /// Residual passes (residual_passes.hpp; 0: the paper's single filter). Each removes more of the
-  /// filter's bias and lets more noise through. configs/ablation_displacement_filter.yaml: 3 against 0
-  /// lowers chamfer on all four models (fandisk cut 9.25 -> 8.51e-3) and raises e_max on two.
+  /// filter's bias and lets more noise through (docs/experiments.md, "The displacement's filter").
   int residual_passes = 3;
   /// Fine residual passes with the paper's narrow mean after the `adaptive` filter's plane fit on
-  /// noise-free data (0: off). configs/ablation_fine_residual.yaml: 3 lowers fandisk cut's e_avr of MS
-  /// 0.93 -> 0.47e-3 and chamfer 7.73 -> 7.44e-3, e_max of MS 9.35 -> 9.64e-3.
+  /// noise-free data (0: off; docs/experiments.md, "Fine residual passes").
   int fine_residual_passes = 3;
   /// What fills the vertices without data (hole_treatment.hpp): `thin_plate`, `membrane` or `harmonic`.
   std::string hole_fill = "thin_plate";
   /// A hole's rim (hole_rim.hpp, ours; 0 off): a vertex beside a hole whose base filter's feet have their
   /// weighted centroid farther than this x the filter's width from it in the tangent plane (feet to one
   /// side: an extrapolation) joins the hole. A straight rim of even data puts the centroid sqrt(2/pi) ~
-  /// 0.8 widths away. configs/ablation_hole_rim.yaml: 0.8 lowers chamfer on all five models (bunny 1.86
-  /// -> 1.50e-3, fandisk cut 7.73 -> 6.65) and raises e_max of MS on three (fandisk 9.35 -> 12.10).
+  /// 0.8 widths away (docs/experiments.md, "Where a hole's fill starts").
   double rim_offset = 0.8;
 
   void visit(FieldVisitor& v) override;

@@ -32,8 +32,7 @@ struct HoleFairingReport {
 /// region with no fixed neighbour has nothing to continue and is left as it is, and so is one held by
 /// fewer fixed neighbours than the square root of its size (not a hole bounded by data), one whose solve
 /// fails or gives non-finite positions, and one with more than `max_region_vertices` free vertices (0: no
-/// limit; the sparse LU grows faster than the region: 11k free vertices 0.5 s, 20k 3 s, 67k 11 s
-/// in Release), each counted. `mesh` must be a manifold (edges and vertices),
+/// limit; the sparse LU grows faster than the region: docs/design.md §8), each counted. `mesh` must be a manifold (edges and vertices),
 /// consistently oriented triangle mesh without faces that repeat a vertex (AlgorithmError otherwise,
 /// before anything moves); its normals, if any, are left to the caller.
 HoleFairingReport fair_holes(TriangleMesh& mesh, const std::vector<char>& free,

@@ -5,8 +5,8 @@
 // scale. The two separate by how they grow with k: independent noise reads the same at every k, while
 // the shape's third-order remainder grows like r^3 ~ k^(3/2), its square like k^3. So the fit is made
 // at two neighbourhood sizes and the quantile RMS extrapolated to zero size, s^2 = sigma^2 + c k^3
-// (Richardson's extrapolation). Without it a clean but sparse scan of a detailed shape (the 6k bunny)
-// reads as noisy as the 25k armadillo with sigma 2e-3.
+// (Richardson's extrapolation). Without it a clean but sparse scan of a detailed shape reads as noisy
+// as a noisy dense one (docs/design.md §8).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -23,7 +23,7 @@ struct NoiseEstimateOptions final : Options {
   int neighbours = 24;
   int small_neighbours = 12;
   /// At most this many points are fitted (evenly strided through the input, so the answer does not
-  /// depend on the thread count); the median of a few thousand is stable to ~2 %.
+  /// depend on the thread count); the median of a few thousand is stable (docs/design.md §8).
   int max_samples = 4000;
   /// The estimate is this quantile of the points' residual RMS, divided by the same quantile of the
   /// RMS pure Gaussian noise would give (chi with k - 6 degrees of freedom), so it reads sigma on pure

@@ -31,7 +31,7 @@ TSpline refine_toward_data(const TSpline& f, const std::vector<Vec3>& points, in
   std::sort(split.begin(), split.end());
   split.erase(std::unique(split.begin(), split.end()), split.end());
   if (split.empty()) return f;
-  return transfer_level_set(f, refine_octree(tree, split, balance_of(tree)), transfer_from_string(options.transfer));
+  return transfer_level_set(f, refine_octree(tree, split, balance_of(tree)));
 }
 
 }  // namespace dtsl

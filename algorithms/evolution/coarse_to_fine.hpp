@@ -1,8 +1,8 @@
 // Coarse-to-fine evolution (ours, after [55]'s adaptive refinement; docs/design.md §1 "the T-mesh's adaptive
 // refinement ... not optional"). The evolution runs first on the data-adaptive T-mesh, which is
 // coarse (points_per_cell keeps n_t near the paper's ~1000-2500) and therefore fast, and captures the
-// topology and outline. A coarse T-mesh cannot bend into thin parts and narrow concavities (a fin of
-// fandisk thinner than two cells stays wrapped in a blob 0.2 away from its data: measured), so each
+// topology and outline. A coarse T-mesh cannot bend into thin parts and narrow concavities (a part
+// thinner than two cells stays wrapped in a blob away from its data: docs/design.md §8), so each
 // round then splits, by one level, the leaves that hold data or that the zero set crosses near data,
 // moves f onto the finer T-mesh unchanged (level_set_transfer.hpp), and evolves again from there. The
 // later rounds start close to the data and need few steps.
@@ -22,7 +22,6 @@ struct CoarseToFineOptions final : Options {
   double data_reach = 2.0;
   int max_iterations = 60;
   double w_distance = 0.1;
-  std::string transfer = "quasi_interpolation";
 
   void visit(FieldVisitor& v) override {
     v.field("levels", levels,
@@ -35,15 +34,9 @@ struct CoarseToFineOptions final : Options {
             "surface in it (lets the surface follow the data it is still approaching)");
     v.field("max_iterations", max_iterations, "iteration cap of each round's evolution");
     v.field("w_distance", w_distance,
-            "distance-field weight w_D in the rounds (-1: the evolution's w_distance). 0.1 (ours, measured on "
-            "fandisk cut, bunny, block, torus: the genus of the first evolution kept, e_avr of MI 20-40% lower "
-            "than at 1); the first evolution "
-            "keeps the topology-safe weight, a round starting near the data can follow it more closely");
-    v.field("transfer", transfer,
-            "f onto the finer T-mesh (level_set_transfer.hpp): 'quasi_interpolation' (the old f at the Greville "
-            "points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus test, but worse "
-            "after the round: chamfer fandisk 7.73e-3 -> 8.74e-3, holed bunny 1.86e-3 -> 2.30e-3, "
-            "measured on fandisk and the holed bunny)");
+            "distance-field weight w_D in the rounds (-1: the evolution's w_distance; 0.1, ours: docs/design.md "
+            "§8); the first evolution keeps the topology-safe weight, a round starting near the data can follow "
+            "it more closely");
   }
   void check() const override {
     check_range("levels", levels, 0, 10);
@@ -51,7 +44,6 @@ struct CoarseToFineOptions final : Options {
     check_range("data_reach", data_reach, 0.0, 100.0);
     check_range("max_iterations", max_iterations, 0, 100000);
     require(w_distance == -1.0 || w_distance >= 0.0, "w_distance", "must be -1 (the evolution's) or >= 0");
-    check_one_of("transfer", transfer, {"quasi_interpolation", "least_squares"});
   }
 };
 

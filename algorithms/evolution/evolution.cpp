@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/support.hpp"
@@ -89,20 +90,17 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
 
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
                                 const EvolutionOptions& options_in) {
-  EvolutionOptions options = options_in;  // the plugins are stateful (cached factorisations)
+  EvolutionOptions options = options_in;  // to_json() of the record visits its fields, which takes a mutable struct
   options.check();
   if (points.empty()) throw AlgorithmError("level-set evolution: no data points");
   Stopwatch clock;
   Timings timings;
   const Velocity& velocity = options.velocity_plugin();
-  LevelSetSolver& solver = options.solver_plugin();
+  // The stage's own solver (stateful: it may cache a factorisation between the steps).
+  const std::unique_ptr<LevelSetSolver> solver_instance = level_set_solvers().create(options.solver, "solver");
+  LevelSetSolver& solver = *solver_instance;
   const TSplineBasis& basis = initial.basis();
   const Octree& tmesh = basis.octree();
-  const Smoothness smoothness = smoothness_from_string(options.smoothness);
-  std::vector<std::array<int, 2>> edges;
-  if (smoothness == Smoothness::first_order && options.w_smooth > 0.0) edges = control_edges(basis);
-  double finest_side = std::numeric_limits<double>::infinity();
-  for (int l = 0; l < tmesh.leaf_count(); ++l) finest_side = std::min(finest_side, tmesh.leaf_side(l));
 
   ZeroSetSampling sampling;
   sampling.subdivision = options.subdivision;
@@ -203,12 +201,9 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       break;
     }
 
-    // CFL step.
+    // CFL step, in each sample's own leaf: dt = cfl min_j h_j / |v_j| (big steps through coarse empty space).
     double dt = options.max_time_step;
-    if (max_speed > 0.0) {
-      const double cfl_dt = options.cfl_cell == "local" ? options.cfl * min_ratio : options.cfl * finest_side / max_speed;
-      dt = std::min(dt, cfl_dt);
-    }
+    if (max_speed > 0.0) dt = std::min(dt, options.cfl * min_ratio);
     record.time_step = dt;
 
     // Least-squares rows for c'.
@@ -232,7 +227,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       }
       rows.add_gradient_rows(samples.band, direction, target, options.w_distance, samples.band_site, gradients);
     }
-    const LeastSquaresSystem system = rows.finish(smoothness, options.w_smooth, &edges);
+    const LeastSquaresSystem system = rows.finish(options.w_smooth);
     timings.rows += part.seconds();
     record.unknowns = system.unknowns;
 
@@ -379,7 +374,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   }
 
   if (options.final_refinement) {
-    RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, stage.solver_plugin());
+    const std::unique_ptr<LevelSetSolver> solver = level_set_solvers().create(options.solver, "solver");
+    RefinedLevelSet refined = refine_level_set(result.evolved, points, options.refinement, *solver);
     result.level_set = std::move(refined.level_set);
     result.transferred = std::move(refined.transferred);
     result.summary["final_refinement"] = to_json(refined.report);

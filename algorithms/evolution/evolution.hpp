@@ -9,7 +9,7 @@
 //
 //   E(c') = sum_j (f'(x_j) + v(x_j) |grad f(x_j)|)^2 / J
 //         + w_D sum_m (2 dt grad f(y_m) . grad f'(y_m) + |grad f(y_m)|^2 - 1)^2 / M
-//         + w_S c'^T R c' / n
+//         + w_S |c'|^2 / n
 //
 // (x_j on the zero set, y_m in a band around it: zero_set.hpp), solved by a LevelSetSolver plugin,
 // then takes the explicit Euler step c <- c + dt c' with a CFL step dt, guarded against zero crossings
@@ -26,7 +26,6 @@
 // ("level set vanished": data with no volume). The iterate kept is the one with the smallest measure.
 #pragma once
 
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -38,26 +37,26 @@
 #include "algorithms/evolution/velocity.hpp"
 #include "algorithms/tspline/tspline.hpp"
 #include "framework/config/options.hpp"
+#include "framework/core/clone_ptr.hpp"
 
 namespace dtsl {
 
 /// Every parameter of the level-set stage. Configs set only the few that are options (visit(): the
 /// velocities with their own options under velocity_ and fine_velocity_, the solver, tmesh_max_depth,
 /// fine_levels, final_refinement, max_points); the other fields are constants of the method, kept here
-/// so that tests and the ablation benches can vary them. A value type: copies clone the plugins.
+/// so that tests and the ablation benches can vary them. Plain copyable data: the velocities are values
+/// (their options), and the least-squares solver is named here and created by the stage that runs it.
 struct EvolutionOptions final : Options {
   std::string velocity = "distance_balloon";
   std::string fine_velocity;
   std::string solver = "eigen_cg";
-  /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md: 1; 0.1 fits the data
-  /// about 2x closer but let |grad f| drop to 0.2 and gave fandisk a spurious genus).
+  /// Weight w_D of the distance-field rows |grad(f + dt f')| = 1 (docs/design.md §1: 1; less fits the
+  /// data closer but lets |grad f| collapse and adds handles: §8).
   double w_distance = 1.0;
-  double w_smooth = 1e-3;                ///< weight w_S of the smoothness term c'^T R c' (docs/design.md)
-  std::string smoothness = "tikhonov";   ///< R = I ('first_order': graph Laplacian of the T-mesh edges)
-  double cfl = 0.5;                      ///< a step moves the zero set by at most cfl x the cell size
-  /// 'local': dt = cfl min_j h_j / |v_j|, h_j the leaf at x_j (big steps through coarse empty space);
-  /// 'finest': dt = cfl h_min / max|v| (docs/design.md).
-  std::string cfl_cell = "local";
+  double w_smooth = 1e-3;                ///< weight w_S of the smoothness term |c'|^2 (docs/design.md)
+  /// A step moves the zero set by at most cfl x the cell size: dt = cfl min_j h_j / |v_j|, h_j the leaf
+  /// at x_j (big steps through coarse empty space).
+  double cfl = 0.5;
   double max_time_step = 0.5;            ///< velocities ~ -(rate) d are Euler-monotone for dt <= 1 / rate
   int max_iterations = 200;              ///< iteration cap of the evolution
   double velocity_tolerance = 1e-3;      ///< at rest when the mean |v| on the zero set falls below this
@@ -84,14 +83,12 @@ struct EvolutionOptions final : Options {
   FinalRefinementOptions refinement;
 
   EvolutionOptions();
-  EvolutionOptions(const EvolutionOptions& other);
-  EvolutionOptions& operator=(const EvolutionOptions& other);
 
   void visit(FieldVisitor& v) override;
   void check() const override;
 
-  /// The velocity / solver plugin named by `velocity` / `solver`, with its options (created anew
-  /// with defaults when the name changed). ConfigError for an unknown name.
+  /// The velocity plugin named by `velocity`, with its options (created anew with defaults when the
+  /// name changed). ConfigError for an unknown name.
   Velocity& velocity_plugin();
   /// The coarse-to-fine rounds' velocity plugin named by `fine_velocity` (its options: fine_velocity_*);
   /// ConfigError when fine_velocity is empty (the rounds then use velocity_plugin()) or unknown.
@@ -99,17 +96,16 @@ struct EvolutionOptions final : Options {
   const Velocity& fine_velocity_plugin() const;
   /// Evolve with a copy of `plugin` (options included), registered as `name`, from now on.
   void use_velocity(const std::string& name, const Velocity& plugin);
-  LevelSetSolver& solver_plugin();
   const Velocity& velocity_plugin() const;
-  const LevelSetSolver& solver_plugin() const;
 
  private:
+  // A velocity plugin is its options plus a pure speed function: a value, copied with the struct
+  // (ClonePtr). Created lazily for the names above, so that visit() reaches the chosen one's options.
   void sync_plugins() const;
-  mutable std::string velocity_name_, solver_name_;  // names the plugins below were created for
-  mutable std::unique_ptr<Velocity> velocity_plugin_;
+  mutable std::string velocity_name_;  // the name velocity_plugin_ was created for
+  mutable ClonePtr<Velocity> velocity_plugin_;
   mutable std::string fine_velocity_name_;
-  mutable std::unique_ptr<Velocity> fine_velocity_plugin_;
-  mutable std::unique_ptr<LevelSetSolver> solver_plugin_;
+  mutable ClonePtr<Velocity> fine_velocity_plugin_;
 };
 
 /// One evolution step, measured before the step is taken (iteration 0 is the initial level set).

@@ -1,5 +1,5 @@
 // EvolutionOptions: the stage's own fields plus, under prefixes, the options of the chosen velocity
-// and solver plugins, the T-mesh and the final refinement (evolution.hpp).
+// plugins (evolution.hpp).
 #include "algorithms/evolution/evolution.hpp"
 
 #include <utility>
@@ -13,51 +13,10 @@ EvolutionOptions::EvolutionOptions() {
   register_level_set_solvers();
 }
 
-EvolutionOptions::EvolutionOptions(const EvolutionOptions& other) : Options(other) { *this = other; }
-
-EvolutionOptions& EvolutionOptions::operator=(const EvolutionOptions& other) {
-  if (this == &other) return *this;
-  velocity = other.velocity;
-  fine_velocity = other.fine_velocity;
-  solver = other.solver;
-  w_distance = other.w_distance;
-  w_smooth = other.w_smooth;
-  smoothness = other.smoothness;
-  cfl = other.cfl;
-  cfl_cell = other.cfl_cell;
-  max_time_step = other.max_time_step;
-  max_iterations = other.max_iterations;
-  velocity_tolerance = other.velocity_tolerance;
-  distance_tolerance = other.distance_tolerance;
-  patience = other.patience;
-  subdivision = other.subdivision;
-  band_subdivision = other.band_subdivision;
-  band_width = other.band_width;
-  curvature_clamp = other.curvature_clamp;
-  sign_guard = other.sign_guard;
-  initial_radius_factor = other.initial_radius_factor;
-  initial_box_margin = other.initial_box_margin;
-  final_refinement = other.final_refinement;
-  tmesh = other.tmesh;
-  fine = other.fine;
-  refinement = other.refinement;
-  velocity_name_ = other.velocity_name_;
-  solver_name_ = other.solver_name_;
-  velocity_plugin_ = other.velocity_plugin_ ? other.velocity_plugin_->clone() : nullptr;
-  fine_velocity_name_ = other.fine_velocity_name_;
-  fine_velocity_plugin_ = other.fine_velocity_plugin_ ? other.fine_velocity_plugin_->clone() : nullptr;
-  solver_plugin_ = other.solver_plugin_ ? other.solver_plugin_->clone() : nullptr;
-  return *this;
-}
-
 void EvolutionOptions::sync_plugins() const {
   if (!velocity_plugin_ || velocity_name_ != velocity) {
     velocity_plugin_ = velocities().create(velocity, "velocity");
     velocity_name_ = velocity;
-  }
-  if (!solver_plugin_ || solver_name_ != solver) {
-    solver_plugin_ = level_set_solvers().create(solver, "solver");
-    solver_name_ = solver;
   }
   if (fine_velocity.empty()) {
     fine_velocity_plugin_.reset();
@@ -87,17 +46,9 @@ Velocity& EvolutionOptions::velocity_plugin() {
   sync_plugins();
   return *velocity_plugin_;
 }
-LevelSetSolver& EvolutionOptions::solver_plugin() {
-  sync_plugins();
-  return *solver_plugin_;
-}
 const Velocity& EvolutionOptions::velocity_plugin() const {
   sync_plugins();
   return *velocity_plugin_;
-}
-const LevelSetSolver& EvolutionOptions::solver_plugin() const {
-  sync_plugins();
-  return *solver_plugin_;
 }
 
 // The options a user chooses between (each with a trade-off the suite or the paper shows); every other
@@ -137,9 +88,7 @@ void EvolutionOptions::check() const {
   if (!level_set_solvers().contains(solver)) level_set_solvers().create(solver, "solver");
   check_non_negative("w_distance", w_distance);
   check_non_negative("w_smooth", w_smooth);
-  check_one_of("smoothness", smoothness, {"tikhonov", "first_order"});
   check_range("cfl", cfl, 1e-3, 10.0);
-  check_one_of("cfl_cell", cfl_cell, {"local", "finest"});
   check_range("max_time_step", max_time_step, 1e-9, 100.0);
   check_range("max_iterations", max_iterations, 0, 100000);
   check_non_negative("velocity_tolerance", velocity_tolerance);
@@ -159,7 +108,6 @@ void EvolutionOptions::check() const {
   checked_with_prefix("velocity_", [&] { velocity_plugin().options().check(); });
   if (!fine_velocity.empty())
     checked_with_prefix("fine_velocity_", [&] { fine_velocity_plugin().options().check(); });
-  checked_with_prefix("solver_", [&] { solver_plugin().options().check(); });
   checked_with_prefix("tmesh_", [&] { tmesh.check(); });
   checked_with_prefix("fine_", [&] { fine.check(); });
   checked_with_prefix("refine_", [&] { refinement.check(); });

@@ -9,14 +9,13 @@
 //     coefficient (f is unchanged where only they are active), the new or changed ones take the old
 //     f at their Greville point (quasi-interpolation);
 //  3. fit directly, by Gauss–Newton steps delta on the coefficients starting from the transferred ones:
-//        sum_k f(p_k)^2 / K  +  w_D sum_m (|grad f(y_m)|^2 - 1)^2 / M  +  w_S delta^T R delta / n ,
+//        sum_k f(p_k)^2 / K  +  w_D sum_m (|grad f(y_m)|^2 - 1)^2 / M  +  w_S |delta|^2 / n ,
 //     the distance-field term linearised as in the evolution (2 grad f . grad delta), so each step is
 //     the same kind of least-squares system the evolution's solvers already solve. Data points
 //     farther than outlier_cells leaf sides from the level set are left out of the fit (outliers,
 //     or data the evolution did not reach: they would drag the surface across the cell).
 // Holes in the data keep their coarse cells and get no data rows: the fill stays smooth. With focus
-// points and local_fit, step 3 fits only the control points over the leaves step 1 created (the rest of
-// f keeps its coefficients): cheaper per D-Map flip round, but the global refit's gain elsewhere is lost.
+// points (D-Map's refine-on-flip rounds), step 1 refines only near them and step 3 still refits all of f.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -36,14 +35,11 @@ struct FinalRefinementOptions final : Options {
   int fit_iterations = 1;
   double w_distance = 0.3;
   double w_smooth = 1e-3;
-  std::string smoothness = "tikhonov";
   double outlier_cells = 2.0;
   int subdivision = 2;
   int band_subdivision = 2;
   double band_width = 2.0;
   double sign_guard = 0.25;
-  std::string transfer = "quasi_interpolation";
-  bool local_fit = false;
 
   void visit(FieldVisitor& v) override {
     v.field("target_level", target_level,
@@ -53,15 +49,11 @@ struct FinalRefinementOptions final : Options {
             "a leaf the zero set crosses is refined if a data point lies within data_reach x its side of the "
             "surface in it");
     v.field("fit_iterations", fit_iterations,
-            "Gauss-Newton steps of the direct fit (0: refine and transfer only); measured on the bunny, 2-3 "
-            "steps change the mean distance by < 8% over 1, at 2-3x the time");
+            "Gauss-Newton steps of the direct fit (0: refine and transfer only; why 1: docs/design.md §8)");
     v.field("w_distance", w_distance,
             "weight w_D of the distance-field term |grad f|^2 = 1 (0.3, ours: the evolution's 1 holds the surface "
-            "at the evolved shape). Measured (Newton distance of the data, evolved -> refined): bunny 0.055 -> "
-            "0.050 at 1, 0.038 at 0.3, 0.029 at 0.1; fandisk cut 0.062 -> 0.062 at 1, 0.048 at 0.3, 0.036 at 0.1 "
-            "but with a spurious handle (genus 1)");
+            "at the evolved shape, less opens spurious handles: docs/design.md §8)");
     v.field("w_smooth", w_smooth, "weight w_S of the smoothness of each Gauss-Newton step");
-    v.field("smoothness", smoothness, "R: 'tikhonov' (R = I) or 'first_order' (T-mesh graph Laplacian)");
     v.field("outlier_cells", outlier_cells,
             "data points farther than this many leaf sides from the level set are left out of the fit");
     v.field("subdivision", subdivision, "zero-set samples (which leaves to refine): centres of s^3 sub-cells per leaf");
@@ -70,15 +62,6 @@ struct FinalRefinementOptions final : Options {
     v.field("sign_guard", sign_guard,
             "no nucleation (sign_guard.hpp): a coefficient no data row touches keeps its sign, at least this "
             "fraction of its cell size from zero; 0 disables");
-    v.field("transfer", transfer,
-            "f onto the refined T-mesh before the fit (level_set_transfer.hpp): 'quasi_interpolation' (the old f "
-            "at the Greville points) or 'least_squares' (a least-squares fit to the old f: ~5x closer on the torus "
-            "test; the fit then lands about where it does from the quasi-interpolant: measured on fandisk and the holed bunny)");
-    v.field("local_fit", local_fit,
-            "with focus points (D-Map's refine-on-flip rounds), fit only the control points whose support overlaps a "
-            "leaf the refinement created, from the rows that depend on them (false, default: refit all of f; "
-            "local is 2-5x cheaper per round but the global refit's gain elsewhere is lost: "
-            "measured on fandisk, bunny, block, torus)");
   }
   void check() const override;
 };
@@ -89,7 +72,6 @@ struct RefinementReport {
   int control_points_before = 0, control_points_after = 0;
   int target_level = 0;
   int fitted_points = 0;           ///< data points in the fit (outliers left out)
-  int free_control_points = 0;     ///< local fit: the unknowns allowed (0: a global fit)
   int guarded = 0;                 ///< coefficients the no-nucleation guard held
   DataFit before, after;           ///< data-to-level-set distance before refinement and after the fit
   std::vector<SolveReport> solves;

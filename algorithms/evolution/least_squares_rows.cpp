@@ -1,11 +1,9 @@
 #include "algorithms/evolution/least_squares_rows.hpp"
 
 #include <algorithm>
-#include <string>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <unordered_map>
+#include <string>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -14,49 +12,6 @@
 #include "framework/core/error.hpp"
 
 namespace dtsl {
-
-Smoothness smoothness_from_string(const std::string& name) {
-  if (name == "tikhonov") return Smoothness::tikhonov;
-  if (name == "first_order") return Smoothness::first_order;
-  throw ConfigError("smoothness: must be one of {tikhonov, first_order}, got '" + name + "'");
-}
-
-const char* to_string(Smoothness s) { return s == Smoothness::tikhonov ? "tikhonov" : "first_order"; }
-
-std::vector<std::array<int, 2>> control_edges(const TSplineBasis& basis) {
-  const Octree& tree = basis.octree();
-  const std::int64_t side = tree.resolution() + 1;
-  auto key = [side](const Int3& p) { return (std::int64_t(p[2]) * side + p[1]) * side + p[0]; };
-  std::unordered_map<std::int64_t, int> control_at;
-  control_at.reserve(std::size_t(basis.size()) * 2);
-  for (int i = 0; i < basis.size(); ++i) control_at.emplace(key(basis.vertex(i)), i);
-
-  std::vector<std::array<int, 2>> edges;
-  for (int l = 0; l < tree.leaf_count(); ++l) {
-    const Octree::Cell& cell = tree.leaf(l);
-    const int s = tree.cell_size(cell.level);
-    for (int axis = 0; axis < 3; ++axis) {
-      const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-      for (int corner = 0; corner < 4; ++corner) {
-        Int3 p = cell.origin;
-        p[a1] += (corner & 1) ? s : 0;
-        p[a2] += (corner & 2) ? s : 0;
-        // Walk the edge one lattice unit at a time: hanging vertices of finer neighbours lie on it.
-        int previous = control_at.at(key(p));
-        for (int t = 1; t <= s; ++t) {
-          ++p[axis];
-          const auto it = control_at.find(key(p));
-          if (it == control_at.end()) continue;
-          edges.push_back({std::min(previous, it->second), std::max(previous, it->second)});
-          previous = it->second;
-        }
-      }
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
 
 // ---------------------------------------------------------------------------------------------------
 
@@ -164,13 +119,6 @@ void LeastSquaresBuilder::add_gradient_rows(const std::vector<Vec3>& y, const st
   add_rows(Kind::gradient, y, &direction, target, weight, &sites, &cache);
 }
 
-void LeastSquaresBuilder::restrict_to(std::vector<char> free) {
-  if (!free.empty() && free.size() != std::size_t(basis_.size()))
-    throw AlgorithmError("least squares: a mask of " + std::to_string(free.size()) + " entries for " +
-                         std::to_string(basis_.size()) + " control points");
-  free_ = std::move(free);
-}
-
 void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
                                    const std::vector<double>& target, double weight, const std::vector<int>* sites,
                                    const GradientCache* cache) {
@@ -183,12 +131,11 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
   threads = std::max(1, std::min(omp_get_max_threads(), int(x.size() / 64) + 1));
 #endif
   struct Block {
-    std::vector<int> count, column, point;  // point: the row's index in x (rows without entries are dropped)
+    std::vector<int> count, column;  // entries of each row (one row per point), their control indices
     std::vector<double> value;
   };
   std::vector<Block> blocks(threads);
   const long n = long(x.size());
-  const bool masked = !free_.empty();
 #pragma omp parallel num_threads(threads)
   {
     int t = 0;
@@ -203,36 +150,28 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     // T-spline has 64 active functions at a generic point, more near T-junctions (53-70 per row, mean,
     // in fandisk's evolution steps).
     b.count.reserve(end - begin);
-    b.point.reserve(end - begin);
     b.column.reserve(std::size_t(end - begin) * 80);
     b.value.reserve(std::size_t(end - begin) * 80);
-    // Appends one entry unless its control point is fixed (restrict_to); returns whether it did.
     const auto entry = [&](int column, double value) {
-      if (masked && !free_[std::size_t(column)]) return 0;
       b.column.push_back(column);
       b.value.push_back(value);
-      return 1;
     };
     for (long k = begin; k < end; ++k) {
-      int count = 0;
+      const std::size_t first = b.column.size();
       if (cache && (*sites)[std::size_t(k)] >= 0 && cache->has((*sites)[std::size_t(k)])) {  // a cached site
         const int site = (*sites)[std::size_t(k)], size = cache->size(site);
         const int* index = cache->index(site);
         const Vec3* gradient = cache->gradient(site);
-        for (int e = 0; e < size; ++e) count += entry(index[e], (*direction)[k].dot(gradient[e]));
+        for (int e = 0; e < size; ++e) entry(index[e], (*direction)[k].dot(gradient[e]));
       } else {
         basis_.active(x[k], active, false);
         for (int e = 0; e < active.size(); ++e)
-          count += entry(active.index[e], kind == Kind::value ? active.value[e] : (*direction)[k].dot(active.gradient[e]));
+          entry(active.index[e], kind == Kind::value ? active.value[e] : (*direction)[k].dot(active.gradient[e]));
       }
-      if (count == 0 && masked) continue;  // touches no free control point
-      b.count.push_back(count);
-      b.point.push_back(int(k));
+      b.count.push_back(int(b.column.size() - first));
     }
   }
-  int rows = 0;
-  for (const Block& b : blocks) rows += int(b.count.size());
-  if (rows == 0) return;
+  const int rows = int(n);
   const double row_weight = weight / double(rows);
   std::size_t entries = 0;
   for (const Block& b : blocks) entries += b.column.size();
@@ -245,14 +184,13 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
     for (int c : b.count) row_begin_.push_back(row_begin_.back() + c);
     column_.insert(column_.end(), b.column.begin(), b.column.end());
     value_.insert(value_.end(), b.value.begin(), b.value.end());
-    for (int k : b.point) rhs_.push_back(target[std::size_t(k)]);
   }
+  rhs_.insert(rhs_.end(), target.begin(), target.end());
   weight_.insert(weight_.end(), std::size_t(rows), row_weight);
   (kind == Kind::value ? value_rows_ : gradient_rows_) += rows;
 }
 
-LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smoothness_weight,
-                                               const std::vector<std::array<int, 2>>* edges) {
+LeastSquaresSystem LeastSquaresBuilder::finish(double smoothness_weight) {
   if (rhs_.empty()) throw AlgorithmError("least squares: no rows");
   LeastSquaresSystem s;
   // Unknowns: the control points touched by a row, in control order (deterministic).
@@ -308,43 +246,22 @@ LeastSquaresSystem LeastSquaresBuilder::finish(Smoothness smoothness, double smo
   s.value_rows = value_rows_;
   s.gradient_rows = gradient_rows_;
 
-  auto add_row = [&s](std::initializer_list<std::pair<int, double>> entries, double w) {
-    for (const auto& [c, v] : entries) {
-      s.column.push_back(c);
-      s.value.push_back(v);
-    }
-    s.row_begin.push_back(int(s.column.size()));
-    s.rhs.push_back(0.0);
-    s.weight.push_back(w);
-    ++s.smoothness_rows;
-  };
   if (smoothness_weight > 0.0) {
-    // Room for exactly the smoothness rows: one copy of the entries here, not a doubling of capacity.
-    const std::size_t extra_rows = std::size_t(s.unknowns) + (smoothness == Smoothness::first_order && edges ? edges->size() : 0);
-    s.column.reserve(s.column.size() + 2 * extra_rows);
-    s.value.reserve(s.value.size() + 2 * extra_rows);
+    // R = I: one row per unknown. Room for exactly these rows: one copy of the entries, not a doubling.
+    const std::size_t extra_rows = std::size_t(s.unknowns);
+    s.column.reserve(s.column.size() + extra_rows);
+    s.value.reserve(s.value.size() + extra_rows);
     s.row_begin.reserve(s.row_begin.size() + extra_rows);
     s.rhs.reserve(s.rhs.size() + extra_rows);
     s.weight.reserve(s.weight.size() + extra_rows);
-    if (smoothness == Smoothness::tikhonov) {
-      const double w = smoothness_weight / s.unknowns;
-      for (int k = 0; k < s.unknowns; ++k) add_row({{k, 1.0}}, w);
-    } else {
-      if (!edges) throw AlgorithmError("least squares: first-order smoothness needs the T-mesh edges");
-      // Edges with one end outside the unknowns tie the other end to its neighbour's zero update.
-      int count = 0;
-      for (const auto& e : *edges) count += unknown_of[e[0]] >= 0 || unknown_of[e[1]] >= 0;
-      const double w = smoothness_weight / std::max(count, 1);
-      for (const auto& e : *edges) {
-        const int a = unknown_of[e[0]], b = unknown_of[e[1]];
-        if (a >= 0 && b >= 0) add_row({{a, 1.0}, {b, -1.0}}, w);
-        else if (a >= 0) add_row({{a, 1.0}}, w);
-        else if (b >= 0) add_row({{b, 1.0}}, w);
-      }
-      // The graph Laplacian leaves a constant shift free where no row pins it: a tiny Tikhonov term
-      // (1e-6 of the smoothness weight) keeps the normal equations positive definite.
-      const double tiny = 1e-6 * smoothness_weight / s.unknowns;
-      for (int k = 0; k < s.unknowns; ++k) add_row({{k, 1.0}}, tiny);
+    const double w = smoothness_weight / s.unknowns;
+    for (int k = 0; k < s.unknowns; ++k) {
+      s.column.push_back(k);
+      s.value.push_back(1.0);
+      s.row_begin.push_back(int(s.column.size()));
+      s.rhs.push_back(0.0);
+      s.weight.push_back(w);
+      ++s.smoothness_rows;
     }
   }
   row_begin_ = {0};

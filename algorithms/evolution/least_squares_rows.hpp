@@ -4,45 +4,28 @@
 //   evolution step, unknowns c' (the time derivative of the coefficients):
 //     value rows     f'(x_j) = -v(x_j) |grad f(x_j)|                              (follow the velocity)
 //     gradient rows  2 dt grad f(y_m) . grad f'(y_m) = 1 - |grad f(y_m)|^2          (distance field)
-//     smoothness     w_S c'^T R c'
+//     smoothness     w_S |c'|^2
 //   final refinement, unknowns delta (a Gauss-Newton step on the coefficients):
 //     value rows     f(p_k) + delta-part = 0                                      (fit the data)
 //     gradient rows  2 grad f(y_m) . grad delta-part = 1 - |grad f(y_m)|^2          (distance field)
-//     smoothness     w_S delta^T R delta
+//     smoothness     w_S |delta|^2
 //
 // where f' = sum_i c'_i R_i with R_i = B_i / sum_j B_j (TSplineBasis::active). Every kind of row is
 // weighted by (its weight) / (number of rows of that kind), so the balance between the terms does not
-// depend on how densely each is sampled (docs/design.md §1). The smoothness term is stored as rows too
-// (R = I: one row per unknown; first-order: one row c'_a - c'_b per T-mesh edge), so that every
-// solver — normal equations or Ceres — sees one uniform problem.
+// depend on how densely each is sampled (docs/design.md §1). The smoothness term (Tikhonov, R = I) is
+// stored as rows too, one per unknown, so that every solver — normal equations or Ceres — sees one
+// uniform problem.
 //
 // Only control points that some value or gradient row touches are unknowns (renumbered densely); the
-// others keep a zero update. With R = I this is exact (their normal equations read w c'_i = 0); with
-// the first-order R it drops the coupling of untouched control points to each other, which cannot
-// move the zero set.
+// others keep a zero update, which is exact (their normal equations read w c'_i = 0).
 #pragma once
 
 #include <Eigen/Core>
-#include <array>
-#include <string>
 #include <vector>
 
 #include "algorithms/tspline/tspline_basis.hpp"
 
 namespace dtsl {
-
-/// R in w_S c'^T R c' (docs/design.md §1: "a thin-plate or first-order smoothness matrix ... (ours)").
-enum class Smoothness {
-  tikhonov,     ///< R = I: small updates
-  first_order,  ///< R = the graph Laplacian of the T-mesh edges: neighbouring control points move alike
-};
-Smoothness smoothness_from_string(const std::string& name);  // ConfigError naming the value
-const char* to_string(Smoothness s);
-
-/// The T-mesh's edges as pairs of control point indices (each leaf-cell edge between two consecutive
-/// vertices of the lattice, hanging vertices included), each pair once: the graph of the first-order
-/// smoothness.
-std::vector<std::array<int, 2>> control_edges(const TSplineBasis& basis);
 
 /// minimise sum_r weight_r (a_r . u - rhs_r)^2 over the unknowns u. Rows in compressed sparse row
 /// form, columns in [0, unknowns), ascending within each row (LeastSquaresBuilder::finish sorts them).
@@ -107,12 +90,6 @@ class LeastSquaresBuilder {
  public:
   explicit LeastSquaresBuilder(const TSplineBasis& basis) : basis_(basis) {}
 
-  /// Only the control points with free[i] != 0 are unknowns of the rows added after this call (one
-  /// entry per control point, or empty: all free again); the others keep a zero update, their columns
-  /// dropped (a local fit). That is right only where the unknowns are updates (a Gauss-Newton step, c'):
-  /// a fixed column's share of an absolute target would be lost. A row left without entries is dropped,
-  /// and its kind's weight is spread over the rows kept. AlgorithmError for a mask of another size.
-  void restrict_to(std::vector<char> free);
   /// Rows added so far.
   int rows() const { return int(rhs_.size()); }
 
@@ -128,12 +105,10 @@ class LeastSquaresBuilder {
                          const std::vector<double>& target, double weight, const std::vector<int>& sites,
                          GradientCache& cache);
 
-  /// The unknowns (control points touched by a row), the rows renumbered, and the smoothness rows
-  /// over the unknowns with total weight `smoothness_weight` (spread over their rows). `edges` is
-  /// needed for first_order only (control_edges(basis), computed once per T-mesh by the caller).
+  /// The unknowns (control points touched by a row), the rows renumbered, and the Tikhonov rows
+  /// (one per unknown) with total weight `smoothness_weight` (spread over them; 0: none).
   /// AlgorithmError if no row was added.
-  LeastSquaresSystem finish(Smoothness smoothness, double smoothness_weight,
-                            const std::vector<std::array<int, 2>>* edges = nullptr);
+  LeastSquaresSystem finish(double smoothness_weight);
 
  private:
   enum class Kind { value, gradient };
@@ -146,7 +121,6 @@ class LeastSquaresBuilder {
   std::vector<int> column_;  // global control indices until finish()
   std::vector<double> value_, rhs_, weight_;
   int value_rows_ = 0, gradient_rows_ = 0;
-  std::vector<char> free_;  // empty: every control point is free
 };
 
 }  // namespace dtsl

@@ -3,8 +3,7 @@
 // surface is not. The least-squares step can: the distance-field rows of the band pull on controls
 // whose support does not reach the zero set, and where the band meets the far field that was left
 // behind by the front (docs/design.md §1 fixes c' only near the surface), f develops a ridge and a valley
-// that can dip through zero — measured as 5-20 spurious bubbles on the two-sphere test without this
-// guard.
+// that can dip through zero: spurious bubbles without this guard (docs/design.md §8).
 //
 // The guard uses the convex-hull property of the rational T-spline (R_i >= 0, sum R_i = 1: f(x) lies
 // between the smallest and largest coefficient active at x). A control point is "at the surface" when

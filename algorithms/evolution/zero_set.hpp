@@ -7,8 +7,7 @@
 // so the rows follow the T-mesh's resolution: dense where the data are dense, sparse where the T-mesh
 // is coarse. s = 2 by default: with one point per leaf (s = 1) the velocity is prescribed at too few
 // points for the ~s^3-per-leaf freedom of a cubic spline in a cell, and f' develops bumps between them
-// that grow into spurious components (measured: 5-15 extra components on the torus and two-sphere
-// tests at s = 1, none at s = 2). Nothing about the number of components or the genus is assumed:
+// that grow into spurious components (docs/design.md §8). Nothing about the number of components or the genus is assumed:
 // every leaf is looked at, every step.
 // y_m: the centres of the b^3 sub-cells (b = 1: the leaf centres) where |f| / |grad f| < band_width x
 // (the side of their leaf), plus the x_j. docs/design.md §1 writes the band as |f| < 2 h_min; on an adaptive T-mesh a band of the finest cell

@@ -93,6 +93,77 @@ struct DtslOptions final : Options {
   }
 };
 
+/// The step a polygonizer is given: `step` to 6 decimals in the [-1,1]^3 frame (1e-6 of the box's
+/// half-width), the precision every committed result was made with. Marching triangulation's mesh
+/// depends on the step's last digits (a step 4e-7 smaller meshes fandisk with a second, overlapping
+/// component or needs a halved step on the bunny: docs/robustness.md), so the step it sees is fixed to
+/// these digits; the stages after MT take the step itself.
+double polygonizer_step(double step) { return std::round(step * 1e6) / 1e6; }
+
+/// The side of the finest cells of f's T-mesh (their diameter is l_T of paper §2.2).
+double finest_cell_side(const TSpline& f) {
+  const Octree& tree = f.tmesh();
+  return tree.unit() * std::pow(2.0, tree.max_depth() - tree.finest_leaf_level());
+}
+
+/// TL's record: the level-set stage's summary, its per-step history without the solver details
+/// (convergence plots, `dtsl report`), counts and stop reason.
+StageRecord level_set_record(const LevelSetResult& level, double seconds) {
+  StageRecord tl{"TL", seconds, std::nullopt, "", level.summary, std::nullopt};
+  tl.summary["control_points"] = level.level_set.basis().size();
+  tl.summary["iterations"] = int(level.history.size()) - 1;
+  nlohmann::json history = nlohmann::json::array();
+  for (const IterationRecord& r : level.history) {
+    nlohmann::json j = to_json(r);
+    j.erase("solve");
+    history.push_back(std::move(j));
+  }
+  tl.summary["history"] = std::move(history);
+  tl.summary["stop_reason"] = level.stop_reason;
+  return tl;
+}
+
+/// The intermediate level set of the paper's Fig. 1(b) as TL's mesh 'LS', outside the timed phases;
+/// a figure only, so a level set the cubes cannot mesh leaves the stage without it.
+void add_midway_mesh(StageRecord& tl, const LevelSetResult& level, const std::vector<Vec3>& seeds, double step) {
+  if (step <= 0.0 || !level.midway) return;
+  try {
+    tl.mesh = polygonizers().create("marching_cubes", "polygonizer")->polygonize(*level.midway, seeds, polygonizer_step(step)).mesh;
+    tl.mesh_label = "LS";
+  } catch (const AlgorithmError&) {
+  }
+}
+
+/// The final refinement may not add components or handles (refinement_guard.hpp): returns the level set
+/// kept, and records the choice in TL (timed as TL). The topology is that of marching cubes at
+/// `cube` (half the finest cell side, at least the marching step): it meshes any level set (marching
+/// triangulation may need halved steps on the coarser evolved one), resolves parts of two cells, and
+/// is cheaper than cubes at MT's step.
+TSpline guard_refinement(const LevelSetResult& level, const std::vector<Vec3>& level_set_points, double cube,
+                         StageRecord& tl) {
+  Stopwatch clock;
+  const TopologyOf topology_of = [&](const TSpline& candidate, double) -> std::optional<ZeroSetTopology> {
+    auto cubes = polygonizers().create("marching_cubes", "polygonizer");
+    try {
+      const MeshStats s = mesh_stats(cubes->polygonize(candidate, level_set_points, polygonizer_step(cube)).mesh);
+      return ZeroSetTopology{int(s.components), s.genus};
+    } catch (const AlgorithmError&) {
+      return std::nullopt;
+    }
+  };
+  GuardedRefinement guarded = guard_refinement_topology(level.evolved, level.level_set, level.transferred, topology_of);
+  // The refinement record's distances describe the whole fit; these, the level set kept.
+  const DataFit kept = data_fit(guarded.level_set, level_set_points);
+  guarded.summary["mean_distance_kept"] = kept.mean;
+  guarded.summary["max_distance_kept"] = kept.max;
+  const double seconds = clock.seconds();
+  tl.seconds += seconds;
+  tl.summary["refinement_guard"] = std::move(guarded.summary);
+  tl.summary["refinement_guard"]["seconds"] = seconds;
+  tl.summary["refinement_guard"]["cube_side"] = cube;
+  return std::move(guarded.level_set);
+}
+
 class DtslPipeline final : public Reconstructor {
  public:
   Options& options() override { return options_; }
@@ -103,186 +174,143 @@ class DtslPipeline final : public Reconstructor {
     check_finite(cloud, "dtsl input");
     const std::vector<Vec3>& points = cloud.points;
     // The level-set stage's data (evolution_max_points, thin_points.hpp); also the polygonizers' seeds,
-    // which need a point near every component, not a million of them (22 s of marching-cubes seeding
-    // on 1M points before).
+    // which need a point near every component, not a million of them.
     const std::vector<Vec3> level_set_points = level_set_data(points, options_.evolution);
-    ReconstructionResult result;
-
-    // TL: Phase 1, the T-spline level set (paper §2.1).
-    context.stage_started("TL", "evolving the T-spline level set");
-    Stopwatch clock;
-    LevelSetResult level = compute_level_set(points, options_.evolution);
-    StageRecord tl{"TL", clock.seconds(), std::nullopt, "", level.summary, std::nullopt};
-    tl.summary["control_points"] = level.level_set.basis().size();
-    tl.summary["iterations"] = int(level.history.size()) - 1;
-    // Per-step record without the solver details (convergence plots, `dtsl report`).
-    nlohmann::json history = nlohmann::json::array();
-    for (const IterationRecord& r : level.history) {
-      nlohmann::json j = to_json(r);
-      j.erase("solve");
-      history.push_back(std::move(j));
-    }
-    tl.summary["history"] = std::move(history);
-    tl.summary["stop_reason"] = level.stop_reason;
-    // The intermediate level set of the paper's Fig. 1(b), outside the timed phases.
-    if (options_.midway_step > 0.0 && level.midway) {
-      try {
-        auto cubes = polygonizers().create("marching_cubes", "polygonizer");
-        apply_assignment(cubes->options(), "step", std::to_string(options_.midway_step), "polygonizer");
-        tl.mesh = cubes->polygonize(*level.midway, level_set_points).mesh;
-        tl.mesh_label = "LS";
-      } catch (const AlgorithmError&) {
-        // A figure only: a level set the cubes cannot mesh leaves the stage without it.
-      }
-    }
-    TSpline f = level.level_set;
-
-    // MT's marching step, 0.2 l_T (paper §2.2), from the finest cells of the level set's T-mesh.
-    const Octree& tree = f.tmesh();
-    const double finest = tree.unit() * std::pow(2.0, tree.max_depth() - tree.finest_leaf_level());  // finest cell side
-    const double delta = std::max(options_.min_step, options_.step_factor * std::sqrt(3.0) * finest);
-
-    // The final refinement may not add components or handles (refinement_guard.hpp). The topology is
-    // that of marching cubes at half the finest cell side: it meshes any level set (marching
-    // triangulation may need halved steps on the coarser evolved one: 3 s on the holed bunny), resolves
-    // parts of two cells, and is cheaper than cubes at MT's step. Timed as TL.
-    if (options_.refinement_guard && !level.transferred.empty()) {
-      Stopwatch guard_clock;
-      const double cube = std::max(delta, 0.5 * finest);
-      const TopologyOf topology_of = [&](const TSpline& candidate, double) -> std::optional<ZeroSetTopology> {
-        auto cubes = polygonizers().create("marching_cubes", "polygonizer");
-        apply_assignment(cubes->options(), "step", std::to_string(cube), "polygonizer");
-        try {
-          const MeshStats s = mesh_stats(cubes->polygonize(candidate, level_set_points).mesh);
-          return ZeroSetTopology{int(s.components), s.genus};
-        } catch (const AlgorithmError&) {
-          return std::nullopt;
-        }
-      };
-      GuardedRefinement guarded = guard_refinement_topology(level.evolved, f, level.transferred, topology_of);
-      f = std::move(guarded.level_set);
-      // The refinement record's distances describe the whole fit; these, the level set kept.
-      const DataFit kept = data_fit(f, level_set_points);
-      guarded.summary["mean_distance_kept"] = kept.mean;
-      guarded.summary["max_distance_kept"] = kept.max;
-      const double guard_seconds = guard_clock.seconds();
-      tl.seconds += guard_seconds;
-      tl.summary["refinement_guard"] = std::move(guarded.summary);
-      tl.summary["refinement_guard"]["seconds"] = guard_seconds;
-      tl.summary["refinement_guard"]["cube_side"] = cube;
-    }
-    result.stages.push_back(tl);
-    result.summary["nt"] = f.basis().size();
-
-    // MT: the initial mesh MI (paper §2.2).
-    context.stage_started("MT", "triangulating the level set");
-    clock.restart();
-    int retries = 0;
-    double step = delta;
-    std::string fallback;
-    std::optional<PolygonizeResult> mi = polygonize(f, level_set_points, step, retries, fallback);
     const StageBounds bounds = stage_bounds(points);
-    const StageCheck mi_check = check_stage_mesh("MT", mi->mesh, bounds);
-    StageRecord mt{"MT", clock.seconds(), mi->mesh, "MI", to_json(mi->summary), std::nullopt};
-    mt.summary["output_check"] = mi_check.to_json();
-    mt.summary["step"] = step;
-    mt.summary["step_halvings"] = retries;
-    if (!fallback.empty()) mt.summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
-    result.stages.push_back(mt);
-    result.summary["delta"] = step;
-
-    // D-Map: displacement along grad f (paper §3), with the refinement fallback on flipped triangles.
-    TriangleMesh md = mi->mesh;
-    if (options_.displacement) {
-      context.stage_started("D-Map", "displacing the mesh onto the data");
-      clock.restart();
-      MeshedLevelSet current{std::move(f), std::move(*mi), step, retries, fallback};
-      FlipRefinement how;
-      how.rounds = options_.flip_refinements;
-      how.refine = options_.evolution.refinement;
-      how.solver = &options_.evolution.solver_plugin();
-      how.triangulate = [&](MeshedLevelSet& m) {  // at m.step, with the polygonizer that made MI
-        const std::string& name = m.fallback.empty() ? options_.polygonizer : options_.polygonizer_fallback;
-        auto polygonizer = polygonizers().create(name, "polygonizer");
-        apply_assignment(polygonizer->options(), "step", std::to_string(m.step), "polygonizer");
-        m.mi = polygonizer->polygonize(m.f, level_set_points);
-      };
-      how.check = [&](TriangleMesh& mesh) { check_stage_mesh("MT (refined near flips)", mesh, bounds); };
-      DisplacementResult dr = displace_refining_on_flips(current, points, level_set_points, options_.displace, how);
-      f = std::move(current.f);
-      mi = std::move(current.mi);
-      step = current.step;
-      retries = current.halvings;
-      fallback = current.fallback;
-      dr.summary["control_points"] = f.basis().size();
-      result.stages[1].mesh = mi->mesh;  // MI: the base mesh the kept displacement started from
-      // ... and MT's record describes that mesh (after an accepted round: the refined level set's).
-      nlohmann::json& mt_summary = result.stages[1].summary;
-      mt_summary = to_json(mi->summary);
-      mt_summary["output_check"] = check_stage_mesh("MT", mi->mesh, bounds).to_json();
-      mt_summary["step"] = step;
-      mt_summary["step_halvings"] = retries;
-      if (!fallback.empty()) mt_summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", fallback}};
-      result.summary["delta"] = step;
-      result.summary["nt"] = f.basis().size();
-      md = dr.mesh;
-      dr.summary["output_check"] = check_moving_stage("D-Map", md, bounds, mi->mesh).to_json();
-      result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
-    }
+    ReconstructionResult result;
+    MeshedLevelSet base = level_set_and_mesh(points, level_set_points, bounds, context, result);
+    TriangleMesh md = base.mi.mesh;
+    if (options_.displacement) md = displacement_stage(base, points, level_set_points, bounds, context, result);
 
     // The T-mesh of the final level set (after any refinement near flips) for the figure of points +
     // T-mesh (the paper's Fig. 1a), outside the timed phases: the leaves holding data (where the octree
     // was refined for them) or a vertex of MI (where the zero set crosses, holes included; the two
     // differ where Phase 1 misses the data). tmesh_lines.hpp says why not all leaves.
     std::vector<Vec3> held = level_set_points;
-    held.insert(held.end(), mi->mesh.vertices.begin(), mi->mesh.vertices.end());
-    result.stages.front().lines = StageLines{"tmesh", "T-mesh", tmesh_edges_around(f.tmesh(), held)};
-    result.summary["tmesh_leaves"] = f.tmesh().leaf_count();
+    held.insert(held.end(), base.mi.mesh.vertices.begin(), base.mi.mesh.vertices.end());
+    stage(result, "TL").lines = StageLines{"tmesh", "T-mesh", tmesh_edges_around(base.f.tmesh(), held)};
+    result.summary["tmesh_leaves"] = base.f.tmesh().leaf_count();
 
-    // B-Evl: sharp features (paper §4), filter widths from the marching step.
-    TriangleMesh ms = md;
-    if (options_.sharpen) {
-      context.stage_started("B-Evl", "recovering sharp features");
-      clock.restart();
-      sharpen::BilateralEvolutionOptions b = options_.bilateral;
-      b.delta = step;
-      sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
-      ms = br.mesh;
-      br.summary["output_check"] = check_moving_stage("B-Evl", ms, bounds, md).to_json();
-      result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary, std::nullopt});
-    }
-    result.mesh = ms;
+    result.mesh = options_.sharpen ? sharpening_stage(md, points, base.step, bounds, context, result) : md;
     return result;
   }
 
  private:
-  /// The mesh of f = 0 at marching step `step`. A step too large for the level set's curvature somewhere
-  /// is reported by the polygonizer; the remedy it names is a smaller step, so halve it (at most
-  /// kMaxStepHalvings times, never below min_step); when it still fails, polygonizer_fallback at the
-  /// first step, with the failure's message in `fallback`. `step` and `halvings` return what was used
-  /// (halvings: the attempts that failed). Both errors, by name, when nothing meshes.
-  std::optional<PolygonizeResult> polygonize(const TSpline& f, const std::vector<Vec3>& points, double& step,
-                                             int& halvings, std::string& fallback) const {
-    const double first_step = step;
+  /// TL (Phase 1, the T-spline level set, paper §2.1) and MT (the initial mesh MI, paper §2.2), their
+  /// records appended to `result`. The marching step is step_factor x l_T (paper §2.2: 0.2), at least
+  /// min_step.
+  MeshedLevelSet level_set_and_mesh(const std::vector<Vec3>& points, const std::vector<Vec3>& level_set_points,
+                                    const StageBounds& bounds, const RunContext& context,
+                                    ReconstructionResult& result) const {
+    context.stage_started("TL", "evolving the T-spline level set");
+    Stopwatch clock;
+    const LevelSetResult level = compute_level_set(points, options_.evolution);
+    StageRecord tl = level_set_record(level, clock.seconds());
+    add_midway_mesh(tl, level, level_set_points, options_.midway_step);
+    const double finest = finest_cell_side(level.level_set);
+    const double delta = std::max(options_.min_step, options_.step_factor * std::sqrt(3.0) * finest);
+    TSpline f = options_.refinement_guard && !level.transferred.empty()
+                    ? guard_refinement(level, level_set_points, std::max(delta, 0.5 * finest), tl)
+                    : level.level_set;
+    result.stages.push_back(std::move(tl));
+    result.summary["nt"] = f.basis().size();
+
+    context.stage_started("MT", "triangulating the level set");
+    clock.restart();
+    MeshedLevelSet base{std::move(f), {}, delta, 0, ""};
+    triangulate(base, level_set_points);
+    StageRecord mt{"MT", 0.0, std::nullopt, "MI", nlohmann::json::object(), std::nullopt};
+    record_mesh(mt, base, bounds);
+    mt.seconds = clock.seconds();
+    result.stages.push_back(std::move(mt));
+    result.summary["delta"] = base.step;
+    return base;
+  }
+
+  /// MT's mesh and record from `base`: MI, its check (AlgorithmError on a violation), step, halvings
+  /// and any fallback.
+  void record_mesh(StageRecord& mt, MeshedLevelSet& base, const StageBounds& bounds) const {
+    const StageCheck check = check_stage_mesh("MT", base.mi.mesh, bounds);
+    mt.mesh = base.mi.mesh;
+    mt.summary = to_json(base.mi.summary);
+    mt.summary["output_check"] = check.to_json();
+    mt.summary["step"] = base.step;
+    mt.summary["step_halvings"] = base.halvings;
+    if (!base.fallback.empty())
+      mt.summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", base.fallback}};
+  }
+
+  /// D-Map: displacement along grad f (paper §3) with the refinement fallback on flipped triangles
+  /// (§3.2, refine_on_flip.hpp). `base` ends as the level set and MI the kept displacement started
+  /// from, and MT's record describes them. Returns MD.
+  TriangleMesh displacement_stage(MeshedLevelSet& base, const std::vector<Vec3>& points,
+                                  const std::vector<Vec3>& level_set_points, const StageBounds& bounds,
+                                  const RunContext& context, ReconstructionResult& result) const {
+    context.stage_started("D-Map", "displacing the mesh onto the data");
+    Stopwatch clock;
+    FlipRefinement how;
+    how.rounds = options_.flip_refinements;
+    how.refine = options_.evolution.refinement;
+    how.solver = options_.evolution.solver;
+    how.triangulate = [&](MeshedLevelSet& m) {  // at m.step, with the polygonizer that made MI
+      const std::string& name = m.fallback.empty() ? options_.polygonizer : options_.polygonizer_fallback;
+      m.mi = polygonizers().create(name, "polygonizer")->polygonize(m.f, level_set_points, polygonizer_step(m.step));
+    };
+    how.check = [&](TriangleMesh& mesh) { check_stage_mesh("MT (refined near flips)", mesh, bounds); };
+    DisplacementResult dr = displace_refining_on_flips(base, points, level_set_points, options_.displace, how);
+    dr.summary["control_points"] = base.f.basis().size();
+    record_mesh(stage(result, "MT"), base, bounds);  // after an accepted round: the refined level set's
+    result.summary["delta"] = base.step;
+    result.summary["nt"] = base.f.basis().size();
+    TriangleMesh md = dr.mesh;
+    dr.summary["output_check"] = check_moving_stage("D-Map", md, bounds, base.mi.mesh).to_json();
+    result.stages.push_back({"D-Map", clock.seconds(), md, "MD", dr.summary, std::nullopt});
+    return md;
+  }
+
+  /// B-Evl: sharp features (paper §4), filter widths from the marching step `delta`. Returns MS.
+  TriangleMesh sharpening_stage(const TriangleMesh& md, const std::vector<Vec3>& points, double delta,
+                                const StageBounds& bounds, const RunContext& context,
+                                ReconstructionResult& result) const {
+    context.stage_started("B-Evl", "recovering sharp features");
+    Stopwatch clock;
+    sharpen::BilateralEvolutionOptions b = options_.bilateral;
+    b.delta = delta;
+    sharpen::BilateralEvolutionResult br = sharpen::bilateral_evolution(md, points, b);
+    TriangleMesh ms = br.mesh;
+    br.summary["output_check"] = check_moving_stage("B-Evl", ms, bounds, md).to_json();
+    result.stages.push_back({"B-Evl", clock.seconds(), ms, "MS", br.summary, std::nullopt});
+    return ms;
+  }
+
+  /// m.mi := the mesh of m.f = 0, starting at marching step m.step. A step too large for the level set's
+  /// curvature somewhere is reported by the polygonizer; the remedy it names is a smaller step, so
+  /// halve it (at most kMaxStepHalvings times, never below min_step); when it still fails,
+  /// polygonizer_fallback at the first step, with the failure's message in m.fallback. m.step and
+  /// m.halvings say what was used (halvings: the attempts that failed). Both errors, by name, when
+  /// nothing meshes.
+  void triangulate(MeshedLevelSet& m, const std::vector<Vec3>& points) const {
+    const double first_step = m.step;
+    m.halvings = 0;
+    m.fallback.clear();
     for (;;) {
-      auto polygonizer = polygonizers().create(options_.polygonizer, "polygonizer");
-      apply_assignment(polygonizer->options(), "step", std::to_string(step), "polygonizer");
       try {
-        return polygonizer->polygonize(f, points);
+        m.mi = polygonizers().create(options_.polygonizer, "polygonizer")->polygonize(m.f, points, polygonizer_step(m.step));
+        return;
       } catch (const AlgorithmError& e) {
-        if (++halvings > kMaxStepHalvings || step / 2 < options_.min_step) {
+        if (++m.halvings > kMaxStepHalvings || m.step / 2 < options_.min_step) {
           if (options_.polygonizer_fallback == "none" || options_.polygonizer_fallback == options_.polygonizer) throw;
-          fallback = e.what();
-          step = first_step;
+          m.fallback = e.what();
+          m.step = first_step;
           auto backup = polygonizers().create(options_.polygonizer_fallback, "polygonizer_fallback");
-          apply_assignment(backup->options(), "step", std::to_string(step), "polygonizer_fallback");
           try {
-            return backup->polygonize(f, points);
+            m.mi = backup->polygonize(m.f, points, polygonizer_step(m.step));
+            return;
           } catch (const AlgorithmError& again) {
-            throw AlgorithmError(fallback + "; then the fallback " + again.what());
+            throw AlgorithmError(m.fallback + "; then the fallback " + again.what());
           }
         }
-        step /= 2;
+        m.step /= 2;
       }
     }
   }

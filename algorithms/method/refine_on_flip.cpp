@@ -2,6 +2,7 @@
 #include "algorithms/method/refine_on_flip.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -14,13 +15,14 @@ namespace {
 // The level set refined one level near the flips of `dr` on current.mi; nullopt when nothing is left
 // to refine there.
 std::optional<TSpline> refined_near_flips(const MeshedLevelSet& current, const DisplacementResult& dr,
-                                          const std::vector<Vec3>& level_set_points, const FlipRefinement& how) {
+                                          const std::vector<Vec3>& level_set_points, const FlipRefinement& how,
+                                          LevelSetSolver& solver) {
   std::vector<Vec3> focus;
   for (int v : dr.flipped_vertices) focus.push_back(current.mi.mesh.vertices[v]);
   FinalRefinementOptions refine = how.refine;
   refine.target_level = std::min(current.f.tmesh().finest_leaf_level() + 1, current.f.tmesh().max_depth());
   RefinedLevelSet refined =
-      refine_level_set(current.f, level_set_points, refine, *how.solver, focus, WhenNothingToSplit::skip_fit);
+      refine_level_set(current.f, level_set_points, refine, solver, focus, WhenNothingToSplit::skip_fit);
   if (refined.report.rounds == 0) return std::nullopt;
   return std::move(refined.level_set);
 }
@@ -35,12 +37,13 @@ bool same_topology(const TriangleMesh& a, const TriangleMesh& b) {
 DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
                                               const std::vector<Vec3>& level_set_points,
                                               const DisplacementOptions& options, const FlipRefinement& how) {
+  const std::unique_ptr<LevelSetSolver> solver = level_set_solvers().create(how.solver, "solver");
   DisplacementResult dr = displace_mesh(current.f, current.mi.mesh, points, options);
   const DataScale scale = dr.scale;  // the data do not change between rounds: measured once
   nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), seconds = nlohmann::json::array();
   for (int round = 0; round < how.rounds && dr.needs_refinement; ++round) {
     Stopwatch part;
-    std::optional<TSpline> refined = refined_near_flips(current, dr, level_set_points, how);
+    std::optional<TSpline> refined = refined_near_flips(current, dr, level_set_points, how, *solver);
     nlohmann::json round_seconds = {{"refine", part.seconds()}};
     if (!refined) break;  // nothing left to refine near the flips
     MeshedLevelSet next{std::move(*refined), PolygonizeResult{}, current.step, current.halvings, current.fallback};

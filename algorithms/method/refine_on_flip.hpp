@@ -29,7 +29,7 @@ struct MeshedLevelSet {
 struct FlipRefinement {
   int rounds = 2;
   FinalRefinementOptions refine;  ///< its target_level is set per round, one below the finest leaves
-  LevelSetSolver* solver = nullptr;
+  std::string solver = "eigen_cg";  ///< the level-set solver plugin of the refits, created by the loop
   /// Triangulates MeshedLevelSet::f into its mi at exactly its step, with the polygonizer that made the
   /// current MI (its fallback named); throws AlgorithmError when f does not mesh there. No step halving:
   /// a refined zero set with detail below MI's step is one the displacement should carry instead
@@ -42,7 +42,7 @@ struct FlipRefinement {
 /// Displaces `current.mi` onto `points` and refines on flips as above; `current` ends as the base of
 /// the displacement returned. The summary gains `flips_per_round` (flipped faces per round, or why a
 /// round was refused) and `refinement_round_seconds`. The topology is judged on the refined MI before
-/// it is displaced.
+/// it is displaced. ConfigError for an unknown solver.
 DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
                                               const std::vector<Vec3>& level_set_points,
                                               const DisplacementOptions& options, const FlipRefinement& how);

@@ -3,8 +3,7 @@
 // continuously, pinching necks and opening holes where the data ask for it. The final refinement is a
 // direct fit (final_refinement.hpp): where a part is thinner than about two cells of the refined
 // T-mesh, data rows on both of its sides pull f to zero across the whole part and the fit can sever it
-// (measured on 30k area samples of armadillo with noise: wrists and ankles cut, 1 -> 15 components,
-// chamfer 5.8e-3 -> 7.1e-3) or open a spurious handle. So the refined level set is kept only if its
+// (docs/design.md §8: the armadillo's wrists and ankles) or open a spurious handle. So the refined level set is kept only if its
 // zero set has no more components and no larger genus than the evolved one; otherwise the fit is
 // scaled back, f_alpha = f_transferred + alpha (f_fitted - f_transferred) for the next alpha of a
 // decreasing list, down to alpha = 0 (the evolved f on the refined T-mesh, taken without a check).

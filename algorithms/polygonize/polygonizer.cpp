@@ -50,6 +50,11 @@ class MarchingTriangulationPlugin final : public Polygonizer {
   PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint) override {
     return marching_triangulation(f, seeds_hint, options_);
   }
+  PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint, double step) override {
+    MarchingTriangulationOptions o = options_;
+    o.step = step;
+    return marching_triangulation(f, seeds_hint, o);
+  }
 
  private:
   MarchingTriangulationOptions options_;
@@ -60,6 +65,11 @@ class MarchingCubesPlugin final : public Polygonizer {
   Options& options() override { return options_; }
   PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint) override {
     return marching_cubes(f, seeds_hint, options_);
+  }
+  PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint, double step) override {
+    MarchingCubesOptions o = options_;
+    o.step = step;
+    return marching_cubes(f, seeds_hint, o);
   }
 
  private:

@@ -61,6 +61,10 @@ class Polygonizer {
   /// Throws ConfigError for invalid options and AlgorithmError when the level set cannot be meshed
   /// (e.g. a front that cannot close, a step too large for the curvature), naming the problem.
   virtual PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint) = 0;
+  /// The same at marching step `step` (frame units) instead of the options' step, which is left as it
+  /// is: how a pipeline hands over the step it computed (paper §2.2: delta = 0.2 l_T), as a number.
+  /// ConfigError for a step the options' check rejects.
+  virtual PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds_hint, double step) = 0;
 };
 
 Registry<Polygonizer>& polygonizers();

@@ -121,7 +121,7 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
 
   SharpVertices sharp;
   for (int it = 0; it < o.max_iterations; ++it) {
-    if (it == 0 || o.redetect) sharp = detect_sharp_vertices(cur, adj, feet, o.sharp);
+    sharp = detect_sharp_vertices(cur, adj, feet, o.sharp);  // on every iteration's mesh
     if (it == 0) first = sharp;
     sharp_counts.push_back(sharp.vertices.size());
     if (sharp.vertices.empty()) {

@@ -1,7 +1,8 @@
 // Phase 3 of the method (paper §4, docs/design.md §4): the data-driven bilateral evolution that recovers
 // sharp features of the displaced mesh.
 //
-// Each iteration: foot points q_k of all data on the current mesh (Fig. 2 cases, Eq. 6); minimise
+// Each iteration: foot points q_k of all data on the current mesh (Fig. 2 cases, Eq. 6) and its sharp
+// vertices (sharp_vertices.hpp, detected anew on every iteration's mesh); minimise
 //   F(V') = E_dist + w E_bila                                                             (Eq. 4)
 //   E_dist = sum_k |q_k + sum_{j in phi(p_k)} lambda_j v'_j - p_k|^2                        (Eq. 5, 6)
 //   E_bila = sum_i |v_i + v'_i - v'_i target|^2, the target from the bilateral filter      (Eq. 7, 8)
@@ -42,11 +43,9 @@ struct BilateralEvolutionOptions final : Options {
   double min_relative_decrease = 1e-3;
   /// Stop at the patience-th slow iteration in a row (that step is not taken; the slow ones before it
   /// are, as each still lowers e_avr). 1: stop at the first. A step that raises e_avr always stops.
-  /// 2 (ours): fandisk's corners go on converging after a slow step (e_max 10.0e-3 -> 9.0e-3), the noisy
-  /// armadillo stops one step later (configs/ablation_bilateral_stop.yaml).
+  /// 2 (ours): corners may go on converging after a slow step (docs/experiments.md, "The bilateral
+  /// evolution's stop").
   int patience = 2;
-  /// Detect the sharp vertices again on every iteration's mesh (otherwise once, on the input).
-  bool redetect = true;
   /// Foot-point case of Fig. 2: barycentric coordinates below this count as zero.
   double snap = 1e-6;
   /// Solver plugin of the linear least-squares problem: eigen_ldlt or ceres.

@@ -277,7 +277,6 @@ Octree uniform_octree(int depth, double margin) {
 
 Octree build_octree(const std::vector<Vec3>& points, const TMeshOptions& options) {
   options.check();
-  if (options.uniform) return uniform_octree(options.max_depth, options.margin);
   const int depth = options.max_depth;
   Octree tree(Vec3::Constant(-1.0 - options.margin), 2.0 + 2.0 * options.margin, depth);
   check_points(points, tree.domain());

@@ -29,19 +29,18 @@ const char* to_string(Balance b);
 /// How the T-mesh is made from the data points (docs/design.md §1).
 ///
 /// Defaults (ours): points_per_cell = 64 puts the control point count in the paper's range (Table 1:
-/// n_t = 870-2550 for 6k-26k points): measured 1347 for 6k points on a sphere, 1446 for 6k and 4765
-/// for 26k points on a torus with 30x density variation; 128 gives 729 / 909 / 2352. min_depth = 3
-/// (cells of 0.31 with the default margin) keeps the empty space the evolving front crosses from
-/// being spanned by a handful of blending functions. Face balance is the docs/design.md rule; 'vertex'
-/// costs ~10% more control points and makes the T-mesh more regular (fewer distinct knot vectors a
-/// leaf), 'edge' lies between: all three give a C2 rational T-spline with a positive denominator.
+/// n_t = 870-2550 for 6k-26k points; the counts: docs/design.md §8). min_depth = 3 (cells of 0.31 with
+/// the default margin) keeps the empty space the evolving front crosses from being spanned by a handful
+/// of blending functions. Face balance is the docs/design.md rule; 'vertex' makes the T-mesh more
+/// regular at more control points, 'edge' lies between: all three give a C2 rational T-spline with a
+/// positive denominator. check() throws ConfigError naming the field (max_depth in [1, kMaxOctreeDepth],
+/// min_depth in [0, kMaxOctreeDepth], margin in [0, 10]).
 struct TMeshOptions final : Options {
   int max_depth = 6;          // finest level; the paper never goes beyond 6
   int min_depth = 3;          // every cell is split at least to this level (capped at max_depth)
   int points_per_cell = 64;   // split a cell holding more data points than this
   double margin = 0.25;       // domain = [-1-margin, 1+margin]^3 around the normalised data
   std::string balance = "face";
-  bool uniform = false;       // ignore the data: full octree, a uniform grid of 2^max_depth cells per axis
 
   void visit(FieldVisitor& v) override {
     v.field("max_depth", max_depth, "finest octree level; cells per axis there = 2^max_depth (paper: <= 6)");
@@ -50,7 +49,6 @@ struct TMeshOptions final : Options {
     v.field("margin", margin, "the domain is [-1-margin, 1+margin]^3 in the normalised frame");
     v.field("balance", balance,
             "2:1 balance between neighbours sharing a 'face', an 'edge' (and faces) or a 'vertex' (all)");
-    v.field("uniform", uniform, "uniform tensor-product grid of 2^max_depth cells per axis, data ignored");
   }
   void check() const override;
 };
@@ -132,13 +130,14 @@ class Octree {
 };
 
 /// The T-mesh for `points` (already in the [-1,1]^3 frame): split while a cell holds more than
-/// points_per_cell points (or is above min_depth) and is above max_depth, then balance. With
-/// options.uniform, the uniform grid. Throws ConfigError for bad options; AlgorithmError for fewer
-/// than 4 points, all points coinciding, a non-finite coordinate or a point outside the domain.
-/// Points all on a plane or a line are accepted: the mesh is refined along them only (tested).
+/// points_per_cell points (or is above min_depth) and is above max_depth, then balance. Throws
+/// ConfigError for bad options; AlgorithmError for fewer than 4 points, all points coinciding, a
+/// non-finite coordinate or a point outside the domain. Points all on a plane or a line are accepted: the mesh is refined along them only (tested).
 Octree build_octree(const std::vector<Vec3>& points, const TMeshOptions& options);
 
-/// The full octree of the given depth over [-1-margin, 1+margin]^3: the uniform tensor-product grid.
+/// The full octree of the given depth over [-1-margin, 1+margin]^3: the uniform tensor-product grid
+/// (tests; the method builds its T-mesh from the data). ConfigError for a depth outside
+/// [0, kMaxOctreeDepth] or a margin outside [0, 10].
 Octree uniform_octree(int depth, double margin);
 
 /// Splits the given leaves (leaf numbers of `octree`; those already at max_depth are left alone),

@@ -9,11 +9,8 @@ namespace dtsl {
 /// Keeps up to `top_pad_mib` of freed heap memory mapped instead of handing it back to the kernel
 /// (glibc's M_TOP_PAD). Every evolution step builds and drops least-squares systems of tens to hundreds
 /// of MB; with glibc's defaults each step faulted its pages in afresh, and the page faults (serialised
-/// between the OpenMP threads, and dear in a virtual machine) were up to a quarter of the wall time.
-/// Measured with MALLOC_TOP_PAD_ in the environment, which does the same (single runs, 2 threads):
-/// fandisk 7.4 -> 5.4 s, the 25k armadillo 27.4 -> 19.1 s; `bench/compare_builds.sh` of the
-/// builds before and after (3 alternating runs): fandisk 8.22 -> 5.86 s, armadillo 22.4 -> 18.8 s,
-/// meshes byte-identical. Side effect: glibc then stops adapting its mmap threshold, so blocks of
+/// between the OpenMP threads, and dear in a virtual machine) were up to a quarter of the wall time
+/// (the timings: docs/performance.md, "What keeps it fast"). Meshes do not change. Side effect: glibc then stops adapting its mmap threshold, so blocks of
 /// 128 KiB or more that do not fit the retained heap are mmapped each time.
 ///
 /// Left alone (and said so) when DTSL_ALLOCATOR=default is in the environment (for A/B timings against

@@ -1,6 +1,23 @@
 #include "framework/pipeline/reconstructor.hpp"
 
+#include <utility>
+
+#include "framework/core/error.hpp"
+
 namespace dtsl {
+
+const StageRecord& stage(const ReconstructionResult& result, const std::string& name) {
+  std::string names;
+  for (const StageRecord& s : result.stages) {
+    if (s.name == name) return s;
+    names += (names.empty() ? "" : ", ") + s.name;
+  }
+  throw Error("no stage '" + name + "' in the result (stages: " + (names.empty() ? "none" : names) + ")");
+}
+
+StageRecord& stage(ReconstructionResult& result, const std::string& name) {
+  return const_cast<StageRecord&>(stage(std::as_const(result), name));
+}
 
 Registry<Reconstructor>& reconstructors() {
   static Registry<Reconstructor> registry("pipeline");

@@ -43,6 +43,11 @@ struct ReconstructionResult {
   nlohmann::json summary = nlohmann::json::object();  ///< e.g. {"normals_source": "ground_truth"}
 };
 
+/// The stage of `result` named `name` (e.g. "MT"), the first if several are. Error naming `name` and
+/// the stages there are when none is.
+StageRecord& stage(ReconstructionResult& result, const std::string& name);
+const StageRecord& stage(const ReconstructionResult& result, const std::string& name);
+
 /// What a run gives a reconstructor besides the points.
 struct RunContext {
   std::uint64_t seed = 1;

@@ -51,12 +51,6 @@ RadialError radial_error(const TriangleMesh& m) {
   return e;
 }
 
-const StageRecord* stage(const ReconstructionResult& r, const std::string& name) {
-  for (const StageRecord& s : r.stages)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
 }  // namespace
 
 TEST_CASE("every PCL baseline is registered with documented options", "[baselines]") {
@@ -107,14 +101,12 @@ TEST_CASE("each baseline reconstructs a sampled sphere", "[baselines]") {
   CHECK(e.max < 0.1);
 
   CHECK(result.summary.at("normals_source") == "ground_truth");
-  const StageRecord* normals = stage(result, "normals");
-  const StageRecord* recon = stage(result, "reconstruct");
-  REQUIRE(normals);
-  REQUIRE(recon);
-  CHECK(normals->seconds >= 0.0);
-  CHECK(recon->seconds > 0.0);
-  CHECK(recon->summary.at("faces") == result.mesh.faces.size());
-  CHECK(recon->summary.at("vertices") == result.mesh.vertices.size());
+  const StageRecord& normals = stage(result, "normals");
+  const StageRecord& recon = stage(result, "reconstruct");
+  CHECK(normals.seconds >= 0.0);
+  CHECK(recon.seconds > 0.0);
+  CHECK(recon.summary.at("faces") == result.mesh.faces.size());
+  CHECK(recon.summary.at("vertices") == result.mesh.vertices.size());
 
   const MeshStats s = mesh_stats(result.mesh);
   INFO("boundary edges " << s.boundary_edges << ", non-manifold edges " << s.nonmanifold_edges

@@ -41,7 +41,7 @@ TEST_CASE("bad input: options out of range are ConfigErrors naming the field", "
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
            {"tmesh_max_depth", "11"}, {"tmesh_max_depth", "0"}, {"cfl", "0"}, {"w_distance", "-1"},
            {"velocity_beta", "2"}, {"solver_tolerance", "0"}, {"refine_target_level", "12"},
-           {"initial_box_margin", "0.5"}, {"smoothness", "thin_plate"}}) {
+           {"initial_box_margin", "0.5"}}) {
     INFO(key << " = " << value);
     EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg");
     try {

@@ -98,69 +98,6 @@ TEST_CASE("final refinement: focus points refine only near them (Phase 2 flips)"
   CHECK(tree.leaf(tree.locate(opposite)).level < o.target_level);
 }
 
-TEST_CASE("final refinement: a local fit around focus points moves only the control points over new leaves",
-          "[evolution][refine]") {
-  const LevelSetResult& evolved = evolved_torus();
-  const std::vector<Vec3>& points = test::torus_data();
-  FinalRefinementOptions o;
-  o.target_level = evolved.level_set.tmesh().max_depth();
-  CHECK_FALSE(o.local_fit);  // off by default
-  o.local_fit = true;
-  auto solver = ldlt();
-  const Vec3 focus = *std::max_element(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
-  const RefinedLevelSet local = refine_level_set(evolved.level_set, points, o, *solver, {focus});
-  REQUIRE(local.report.leaves_split > 0);
-  INFO(to_json(local.report).dump());
-  CHECK(local.report.free_control_points > 0);
-  CHECK(local.report.free_control_points < local.report.control_points_after / 2);
-  // Outside the free set the coefficients are the transferred ones; inside, the fit moved some.
-  const std::vector<double>& c = local.level_set.coefficients();
-  int moved = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) moved += c[i] != local.transferred[i];
-  CHECK(moved > 0);
-  CHECK(moved <= local.report.free_control_points);
-  // Every moved control point is free: its support overlaps a leaf the refinement created.
-  const TSplineBasis& refined = local.level_set.basis();
-  const Octree& before_tree = evolved.level_set.tmesh();
-  std::vector<char> free(c.size(), 0);
-  for (int l = 0; l < refined.octree().leaf_count(); ++l) {
-    const Octree::Cell& cell = refined.octree().leaf(l);
-    if (before_tree.leaf(before_tree.leaf_at(cell.origin)).level < cell.level)
-      for (int i : refined.support(l)) free[std::size_t(i)] = 1;
-  }
-  for (std::size_t i = 0; i < c.size(); ++i)
-    if (c[i] != local.transferred[i]) CHECK(free[i]);
-  // So f is the transferred f far from the focus (the other side of the torus) ...
-  const Vec3 opposite(-focus.x(), focus.y(), focus.z());
-  const TSpline transferred(local.level_set.shared_basis(), local.transferred);
-  CHECK(local.level_set.evaluate(opposite) == Approx(transferred.evaluate(opposite)).margin(1e-12));
-  // ... and near it the data are closer than to the evolved f, about as close as after a global fit
-  // (sums of |f| / |grad f| over the data within 0.1 of the focus).
-  FinalRefinementOptions all_options = o;
-  all_options.local_fit = false;
-  const RefinedLevelSet all = refine_level_set(evolved.level_set, points, all_options, *solver, {focus});
-  CHECK(all.report.free_control_points == 0);
-  const auto near_distance = [&](const ImplicitFunction& f) {
-    double sum = 0.0;
-    for (const Vec3& p : points)
-      if ((p - focus).norm() < 0.1) {
-        Vec3 g;
-        const double v = f.evaluate(p, &g);
-        sum += std::abs(v) / g.norm();
-      }
-    return sum;
-  };
-  const double d_evolved = near_distance(evolved.level_set), d_local = near_distance(local.level_set),
-               d_global = near_distance(all.level_set);
-  INFO("near the focus: evolved " << d_evolved << ", local fit " << d_local << ", global fit " << d_global);
-  CHECK(d_local < 0.9 * d_evolved);
-  CHECK(d_local < 1.1 * d_global);
-  // Without focus points the option changes nothing: the final refinement fits everywhere.
-  FinalRefinementOptions global = o;
-  global.target_level = -1;
-  CHECK(refine_level_set(evolved.level_set, points, global, *solver).report.free_control_points == 0);
-}
-
 TEST_CASE("final refinement: nothing to split fits anyway, or with skip_fit returns f unchanged", "[evolution][refine]") {
   const LevelSetResult& evolved = evolved_torus();
   const std::vector<Vec3>& points = test::torus_data();
@@ -196,34 +133,5 @@ TEST_CASE("final refinement: options are checked, no points is an error", "[evol
   o.fit_iterations = -1;
   CHECK_THROWS_AS(refine_level_set(evolved.level_set, test::torus_data(), o, *solver), ConfigError);
   FinalRefinementOptions p;
-  CHECK_THROWS_WITH(apply_assignment(p, "smoothness", "thin_plate", "refine"), Catch::Contains("smoothness"));
-  FinalRefinementOptions q;
-  CHECK_THROWS_WITH(apply_assignment(q, "transfer", "nearest", "refine"),
-                    Catch::Contains("transfer") && Catch::Contains("nearest"));
-}
-
-TEST_CASE("final refinement: the least-squares transfer starts the fit closer to the evolved f", "[evolution][refine][transfer]") {
-  const LevelSetResult& evolved = evolved_torus();
-  const std::vector<Vec3>& points = test::torus_data();
-  FinalRefinementOptions o;
-  o.fit_iterations = 0;  // the transfer alone
-  auto solver = ldlt();
-  const RefinedLevelSet quasi = refine_level_set(evolved.level_set, points, o, *solver);
-  o.transfer = "least_squares";
-  const RefinedLevelSet fitted = refine_level_set(evolved.level_set, points, o, *solver);
-  REQUIRE(quasi.report.leaves_split == fitted.report.leaves_split);
-  CHECK(fitted.report.transfer.method == "least_squares");
-  CHECK(quasi.report.transfer.method == "quasi_interpolation");
-  CHECK(fitted.report.transfer.converged);
-  CHECK(fitted.report.transfer.samples > 0);
-  CHECK(to_json(fitted.report)["transfer"]["method"] == "least_squares");
-  // On the data, the transferred f differs from the evolved one by less (sum of squares).
-  double quasi_sq = 0.0, fitted_sq = 0.0;
-  for (const Vec3& p : points) {
-    const double f0 = evolved.level_set.evaluate(p);
-    quasi_sq += std::pow(quasi.level_set.evaluate(p) - f0, 2);
-    fitted_sq += std::pow(fitted.level_set.evaluate(p) - f0, 2);
-  }
-  INFO("sum of squares " << quasi_sq << " -> " << fitted_sq);
-  CHECK(fitted_sq < 0.5 * quasi_sq);
+  CHECK_THROWS_WITH(apply_assignment(p, "w_distance", "-1", "refine"), Catch::Contains("w_distance"));
 }

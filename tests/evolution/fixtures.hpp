@@ -61,10 +61,9 @@ inline EvolutionOptions test_options(const std::string& velocity, const std::str
 }
 
 /// The least-squares system of one evolution step from the initial surface (velocity rows with a
-/// prescribed inward speed, the distance-field band, the chosen smoothness): a realistic system for
+/// prescribed inward speed, the distance-field band, the Tikhonov rows): a realistic system for
 /// comparing solvers.
-inline LeastSquaresSystem step_system(const std::vector<Vec3>& points, const EvolutionOptions& o,
-                                      Smoothness smoothness = Smoothness::tikhonov) {
+inline LeastSquaresSystem step_system(const std::vector<Vec3>& points, const EvolutionOptions& o) {
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, o.tmesh));
   const TSpline f = initial_level_set(basis, points, o.initial_radius_factor, o.initial_box_margin);
   ZeroSetSampling sampling;
@@ -84,9 +83,7 @@ inline LeastSquaresSystem step_system(const std::vector<Vec3>& points, const Evo
     rhs.push_back(1.0 - s.band_gradient[m].squaredNorm());
   }
   rows.add_gradient_rows(s.band, direction, rhs, o.w_distance);
-  static std::vector<std::array<int, 2>> edges;
-  edges = control_edges(*basis);
-  return rows.finish(smoothness, o.w_smooth, &edges);
+  return rows.finish(o.w_smooth);
 }
 
 /// The zero set as a triangle mesh (marching tetrahedra on a grid over the data's box), for genus and

@@ -77,7 +77,7 @@ TEST_CASE("sign guard: controls away from the zero-set rows keep their sign", "[
   const std::vector<Vec3> surface = {Vec3(0.8, 0, 0)};
   rows.add_value_rows(surface, {0.0}, 1.0);
   rows.add_gradient_rows({Vec3(-0.8, 0, 0)}, {Vec3::UnitX()}, {0.0}, 1.0);
-  const LeastSquaresSystem s = rows.finish(Smoothness::tikhonov, 1e-3);
+  const LeastSquaresSystem s = rows.finish(1e-3);
   const std::vector<double> floors = sign_floors(*basis, 0.25);
   std::vector<double> before(basis->size(), -0.5), after(basis->size(), 0.3);  // every unknown flips sign
   const int held = guard_signs(s, s.value_rows, floors, before, after);

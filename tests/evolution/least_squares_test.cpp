@@ -43,7 +43,7 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   LeastSquaresBuilder rows(*basis);
   rows.add_value_rows(x, std::vector<double>(x.size(), 0.0), 2.0);
   rows.add_gradient_rows(x, direction, std::vector<double>(x.size(), 0.0), 4.0);
-  const LeastSquaresSystem s = rows.finish(Smoothness::tikhonov, 0.0);
+  const LeastSquaresSystem s = rows.finish(0.0);
   REQUIRE(s.rows() == 80);
   CHECK(s.value_rows == 40);
   CHECK(s.gradient_rows == 40);
@@ -74,66 +74,7 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   for (int k = 0; k < s.unknowns; ++k) CHECK(touched[s.control[k]]);
   const std::vector<double> full = s.expand(cu, basis->size());
   for (int i = 0; i < basis->size(); ++i) CHECK(full[i] == (touched[i] ? c[i] : 0.0));
-  CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(Smoothness::tikhonov, 1.0), AlgorithmError);
-}
-
-TEST_CASE("least squares: rows restricted to free control points drop the others' columns and rows touching none",
-          "[evolution][rows]") {
-  auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> x;
-  for (int k = 0; k < 60; ++k) x.push_back(Vec3(u(rng), u(rng), u(rng)));
-  // Free: the support list of the leaf holding x[0].
-  std::vector<char> free(basis->size(), 0);
-  for (int c : basis->support(basis->leaf_of(x[0]))) free[c] = 1;
-  std::vector<double> target(x.size());
-  for (std::size_t k = 0; k < x.size(); ++k) target[k] = double(k);
-  LeastSquaresBuilder rows(*basis);
-  rows.restrict_to(free);
-  rows.add_value_rows(x, target, 3.0);
-  const LeastSquaresSystem s = rows.finish(Smoothness::tikhonov, 0.0);
-  // The rows kept are the points with an active free control point, in point order, with their targets;
-  // each row's entries are exactly its free active functions.
-  ActiveBasis active;
-  int kept = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    basis->active(x[k], active);
-    std::vector<int> expected;
-    for (int e = 0; e < active.size(); ++e)
-      if (free[active.index[e]]) expected.push_back(active.index[e]);
-    if (expected.empty()) continue;
-    REQUIRE(kept < s.rows());
-    std::vector<int> got;
-    for (int e = s.row_begin[kept]; e < s.row_begin[kept + 1]; ++e) got.push_back(s.control[s.column[e]]);
-    std::sort(expected.begin(), expected.end());
-    CHECK(got == expected);
-    CHECK(s.rhs[kept] == target[k]);
-    ++kept;
-  }
-  CHECK(s.rows() == kept);
-  CHECK(kept > 0);
-  CHECK(kept < int(x.size()));
-  CHECK(s.value_rows == kept);
-  CHECK(s.weight[0] == Approx(3.0 / kept));  // the kind's weight over the rows kept
-  for (int k = 0; k < s.unknowns; ++k) CHECK(free[s.control[k]]);
-  // An all-free mask gives the system of no mask, entry for entry (value and gradient rows).
-  std::vector<Vec3> direction(x.size(), Vec3(0.2, -0.5, 0.8));
-  LeastSquaresBuilder plain(*basis), all(*basis);
-  all.restrict_to(std::vector<char>(basis->size(), 1));
-  for (LeastSquaresBuilder* b : {&plain, &all}) {
-    b->add_value_rows(x, target, 3.0);
-    b->add_gradient_rows(x, direction, target, 0.5);
-  }
-  const LeastSquaresSystem p = plain.finish(Smoothness::tikhonov, 1e-3), q = all.finish(Smoothness::tikhonov, 1e-3);
-  CHECK(p.control == q.control);
-  CHECK(p.row_begin == q.row_begin);
-  CHECK(p.column == q.column);
-  CHECK(p.value == q.value);
-  CHECK(p.rhs == q.rhs);
-  CHECK(p.weight == q.weight);
-  // A mask of another size is refused.
-  CHECK_THROWS_AS(LeastSquaresBuilder(*basis).restrict_to(std::vector<char>(3, 1)), AlgorithmError);
+  CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(1.0), AlgorithmError);
 }
 
 TEST_CASE("least squares: gradient rows from the band's site cache equal rows computed afresh, step after step",
@@ -155,7 +96,7 @@ TEST_CASE("least squares: gradient rows from the band's site cache equal rows co
     LeastSquaresBuilder fresh(*basis), cached(*basis);
     fresh.add_gradient_rows(samples.band, direction, target, 1.0);
     cached.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, cache);
-    const LeastSquaresSystem a = fresh.finish(Smoothness::tikhonov, 0.1), b = cached.finish(Smoothness::tikhonov, 0.1);
+    const LeastSquaresSystem a = fresh.finish(0.1), b = cached.finish(0.1);
     CHECK(a.row_begin == b.row_begin);
     CHECK(a.column == b.column);
     CHECK(a.value == b.value);  // bit for bit
@@ -190,33 +131,25 @@ TEST_CASE("least squares: gradient rows from the band's site cache equal rows co
   CHECK_THROWS_AS(rows.add_gradient_rows(samples.band, direction, target, 1.0, samples.band_site, small), AlgorithmError);
 }
 
-TEST_CASE("least squares: smoothness rows and T-mesh edges", "[evolution][rows]") {
-  // Uniform grid of n cells per axis: 3 n (n + 1)^2 lattice edges, each between neighbouring vertices.
-  const int depth = 3, n = 1 << depth;
-  TSplineBasis uniform(uniform_octree(depth, 0.25));
-  const auto edges = control_edges(uniform);
-  CHECK(int(edges.size()) == 3 * n * (n + 1) * (n + 1));
-  for (const auto& e : edges) {
-    const Int3 a = uniform.vertex(e[0]), b = uniform.vertex(e[1]);
-    CHECK(std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) == uniform.octree().cell_size(depth));
-  }
-  // An adaptive T-mesh: every edge joins two control points on one lattice line, hanging ones included.
-  TSplineBasis adaptive(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
-  for (const auto& e : control_edges(adaptive)) {
-    const Int3 a = adaptive.vertex(e[0]), b = adaptive.vertex(e[1]);
-    CHECK(int(a[0] != b[0]) + int(a[1] != b[1]) + int(a[2] != b[2]) == 1);
-  }
+TEST_CASE("least squares: one Tikhonov row per unknown, weight spread over them", "[evolution][rows]") {
   const EvolutionOptions o = test::test_options("distance", "eigen_ldlt");
-  const LeastSquaresSystem tikhonov = test::step_system(test::sphere_data(800), o, Smoothness::tikhonov);
-  CHECK(tikhonov.smoothness_rows == tikhonov.unknowns);
-  const LeastSquaresSystem first = test::step_system(test::sphere_data(800), o, Smoothness::first_order);
-  CHECK(first.smoothness_rows > first.unknowns);
+  const LeastSquaresSystem s = test::step_system(test::sphere_data(800), o);
+  REQUIRE(s.unknowns > 0);
+  CHECK(s.smoothness_rows == s.unknowns);
+  for (int k = 0; k < s.smoothness_rows; ++k) {
+    const int r = s.rows() - s.smoothness_rows + k;
+    CHECK(s.row_begin[r + 1] - s.row_begin[r] == 1);
+    CHECK(s.column[s.row_begin[r]] == k);
+    CHECK(s.value[s.row_begin[r]] == 1.0);
+    CHECK(s.rhs[r] == 0.0);
+    CHECK(s.weight[r] == Approx(o.w_smooth / s.unknowns));
+  }
 }
 
 TEST_CASE("normal equations equal A^T W A and A^T W b", "[evolution][rows]") {
   const EvolutionOptions o = test::test_options("distance", "eigen_ldlt");
-  for (Smoothness smoothness : {Smoothness::tikhonov, Smoothness::first_order}) {
-    const LeastSquaresSystem s = test::step_system(test::sphere_data(600), o, smoothness);
+  {
+    const LeastSquaresSystem s = test::step_system(test::sphere_data(600), o);
     const Eigen::MatrixXd A = dense_rows(s);
     const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(s.weight.data(), s.rows());
     const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(s.rhs.data(), s.rows());

@@ -50,22 +50,21 @@ void check_stages(const Run& r) {
   REQUIRE(r.e_avr.count("MI"));
   REQUIRE(r.e_avr.count("MD"));
   REQUIRE(r.e_avr.count("MS"));
-  CHECK(r.result.stages.front().summary.contains("history"));
+  CHECK(stage(r.result, "TL").summary.contains("history"));
   // The intermediate level set (paper Fig. 1(b)) rides on the TL stage, for figures.
-  CHECK(r.result.stages.front().mesh_label == "LS");
-  REQUIRE(r.result.stages.front().mesh);
-  CHECK(!r.result.stages.front().mesh->faces.empty());
+  CHECK(stage(r.result, "TL").mesh_label == "LS");
+  REQUIRE(stage(r.result, "TL").mesh);
+  CHECK(!stage(r.result, "TL").mesh->faces.empty());
   CHECK(r.result.summary.contains("nt"));
   // The final refinement's topology guard (refinement_guard.hpp), on by default with the refinement:
   // the initial mesh MI, made from the level set it kept, has no more components than the evolved one.
-  const nlohmann::json& tl = r.result.stages.front().summary;
+  const nlohmann::json& tl = stage(r.result, "TL").summary;
   REQUIRE(tl.contains("refinement_guard"));
   const nlohmann::json& guard = tl.at("refinement_guard");
   INFO(guard.dump());
   REQUIRE(guard.at("evolved").is_object());
-  REQUIRE(r.result.stages.size() > 1);
-  REQUIRE(r.result.stages[1].mesh);
-  const MeshStats mi = mesh_stats(*r.result.stages[1].mesh);
+  REQUIRE(stage(r.result, "MT").mesh);
+  const MeshStats mi = mesh_stats(*stage(r.result, "MT").mesh);
   CHECK(int(mi.components) <= guard.at("evolved").at("components").get<int>());
   CHECK(guard.at("mean_distance_kept").get<double>() >= 0.0);
 }
@@ -112,6 +111,8 @@ TEST_CASE("dtsl: phases switched off leave their stages out and the mesh of the 
   for (const StageRecord& s : r.result.stages) names.push_back(s.name);
   CHECK(names == std::vector<std::string>{"TL", "MT"});
   CHECK(mesh_stats(r.result.mesh).watertight);
+  // Stages are looked up by name; a missing one is an error naming it and the stages there are.
+  CHECK_THROWS_WITH(stage(r.result, "D-Map"), Catch::Contains("D-Map") && Catch::Contains("TL, MT"));
 }
 
 TEST_CASE("dtsl: bad options and input are clear errors", "[method][errors]") {
@@ -135,6 +136,9 @@ class FailingPolygonizer final : public Polygonizer {
   PolygonizeResult polygonize(const ImplicitFunction&, const std::vector<Vec3>&) override {
     throw AlgorithmError("test_failing: the step is too large for the surface");
   }
+  PolygonizeResult polygonize(const ImplicitFunction& f, const std::vector<Vec3>& seeds, double) override {
+    return polygonize(f, seeds);
+  }
 
  private:
   struct StepOnly final : Options {
@@ -153,8 +157,7 @@ TEST_CASE("dtsl: a polygonizer that fails at every step falls back to marching c
     polygonizers().add("test_failing", "always fails (tests)", [] { return std::make_unique<FailingPolygonizer>(); });
   const std::string sphere = "{name: s, shape: sphere, sampler: {type: area, count: 1500}}";
   const Run r = run_dtsl(sphere, {{"polygonizer", "test_failing"}, {"sharpen", "false"}});
-  const StageRecord& mt = r.result.stages.at(1);
-  REQUIRE(mt.name == "MT");
+  const StageRecord& mt = stage(r.result, "MT");
   REQUIRE(mt.summary.contains("fallback"));
   CHECK(mt.summary["fallback"]["polygonizer"] == "marching_cubes");
   CHECK(mt.summary["fallback"]["reason"].get<std::string>().find("test_failing") != std::string::npos);
@@ -168,12 +171,11 @@ TEST_CASE("dtsl: evolution_max_points thins the level-set stage only; the displa
   const Run r = run_dtsl("{name: s, shape: sphere, sampler: {type: area, count: 1500}}",
                          // A coarse T-mesh (finest cells 0.16 wide), so that its cells hold several points.
                          {{"evolution_max_points", "1000"}, {"evolution_tmesh_max_depth", "4"}, {"sharpen", "false"}});
-  const StageRecord& tl = r.result.stages.at(0);
+  const StageRecord& tl = stage(r.result, "TL");
   CHECK(tl.summary["points"] == 1500);
   CHECK(tl.summary["points_used"].get<int>() <= 1000);
   CHECK(tl.summary["points_used"].get<int>() >= 500);
-  const StageRecord& dmap = r.result.stages.at(2);
-  REQUIRE(dmap.name == "D-Map");
+  const StageRecord& dmap = stage(r.result, "D-Map");
   CHECK(dmap.summary["points"] == 1500);
   CHECK(mesh_stats(r.result.mesh).watertight);
   CHECK(r.e_avr.at("MD") < r.e_avr.at("MI"));

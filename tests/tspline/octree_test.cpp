@@ -104,10 +104,6 @@ TEST_CASE("uniform T-mesh is the full octree", "[tspline][octree]") {
     for (int l = 0; l < t.leaf_count(); ++l) CHECK(t.leaf(l).level == depth);
     CHECK(t.domain().min.x() == -1.25);
     CHECK(t.domain().max.z() == 1.25);
-    TMeshOptions o;
-    o.uniform = true;
-    o.max_depth = depth;
-    CHECK(build_octree(test::nonuniform_points(), o).leaf_count() == t.leaf_count());
   }
 }
 

@@ -1,11 +1,13 @@
 // `eigen_cg`: conjugate gradients on the normal equations, warm-started from the caller's guess (the
-// evolution passes the previous step's c', docs/design.md §1), with a Jacobi or incomplete-Cholesky
-// preconditioner. CG that misses its tolerance within max_iterations either falls back, documented
-// and tested, to the direct eigen_ldlt factorisation of the same normal equations (on_failure =
-// eigen_ldlt, the default; the report says fell_back, solver = "eigen_ldlt"), or throws (on_failure =
-// error: an AlgorithmError naming eigen_cg and the residual).
+// evolution passes the previous step's c', docs/design.md §1), Jacobi-preconditioned (an incomplete
+// Cholesky preconditioner made the level-set stage 1.3-2.6x slower and was removed). CG that misses its
+// tolerance within max_iterations either falls back, documented and tested, to the direct eigen_ldlt
+// factorisation of the same normal equations (on_failure = eigen_ldlt, the default; the report says
+// fell_back, solver = "eigen_ldlt"), or throws (on_failure = error: an AlgorithmError naming eigen_cg
+// and the residual).
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <string>
 
 #include "algorithms/evolution/normal_equations.hpp"
 #include "algorithms/evolution/solvers/solvers.hpp"
@@ -22,14 +24,12 @@ struct EigenCgOptions final : Options {
   // 1e-6 does at half the solve time (measured at 100k points).
   double tolerance = 1e-5;
   int max_iterations = 2000;
-  std::string preconditioner = "jacobi";
   std::string on_failure = "eigen_ldlt";
 
   void visit(FieldVisitor& v) override {
     v.field("tolerance", tolerance,
             "stop when the relative residual |N u - g| / |g| of the normal equations is below this");
     v.field("max_iterations", max_iterations, "CG iteration cap");
-    v.field("preconditioner", preconditioner, "'jacobi' (diagonal) or 'incomplete_cholesky'");
     v.field("on_failure", on_failure,
             "when CG misses the tolerance: 'error' (AlgorithmError naming the residual) or 'eigen_ldlt' "
             "(solve the same normal equations directly; the report says so)");
@@ -37,7 +37,6 @@ struct EigenCgOptions final : Options {
   void check() const override {
     check_range("tolerance", tolerance, 1e-16, 1.0);
     check_range("max_iterations", max_iterations, 1, 1000000);
-    check_one_of("preconditioner", preconditioner, {"jacobi", "incomplete_cholesky"});
     check_one_of("on_failure", on_failure, {"error", "eigen_ldlt"});
   }
 };
@@ -51,26 +50,23 @@ class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
     const NormalEquations normal = normal_equations(system);
     const double forming_seconds = clock.seconds();  // where the time goes: forming vs iterating
     if (solution.size() != system.unknowns || !solution.allFinite()) solution = Eigen::VectorXd::Zero(system.unknowns);
-    double cg_error = 0.0;
-    bool converged = false;
-    if (options_.preconditioner == "jacobi") {
-      // The whole symmetric matrix (Lower | Upper): Eigen then multiplies with its transposed, row-major
-      // view, each row's sum on one OpenMP thread — the same result for every thread count, and 1.7x
-      // faster on 2 cores than the serial symmetric product on the lower triangle. (One barrier per
-      // iteration: runs side by side must not oversubscribe the cores, see `dtsl run --jobs`.)
-      const Eigen::SparseMatrix<double> full = normal.lower.selfadjointView<Eigen::Lower>();
-      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                               Eigen::DiagonalPreconditioner<double>> cg;
-      converged = run(cg, full, normal.rhs, solution, report.iterations, cg_error);
-    } else {
-      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower,
-                               Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>> cg;
-      converged = run(cg, normal.lower, normal.rhs, solution, report.iterations, cg_error);
-    }
+    // The whole symmetric matrix (Lower | Upper): Eigen then multiplies with its transposed, row-major
+    // view, each row's sum on one OpenMP thread — the same result for every thread count, and 1.7x
+    // faster on 2 cores than the serial symmetric product on the lower triangle. (One barrier per
+    // iteration: runs side by side must not oversubscribe the cores, see `dtsl run --jobs`.)
+    const Eigen::SparseMatrix<double> full = normal.lower.selfadjointView<Eigen::Lower>();
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                             Eigen::DiagonalPreconditioner<double>> cg;
+    cg.setTolerance(options_.tolerance);
+    cg.setMaxIterations(options_.max_iterations);
+    cg.compute(full);
+    const Eigen::VectorXd guess = solution;
+    solution = cg.solveWithGuess(normal.rhs, guess);
+    report.iterations = int(cg.iterations());
+    const double cg_error = cg.error();
+    const bool converged = cg.info() == Eigen::Success && solution.allFinite();
     report.relative_residual = system.relative_residual(solution);
-    report.details = {{"cg_error", cg_error},
-                      {"preconditioner", options_.preconditioner},
-                      {"normal_equations_seconds", forming_seconds}};
+    report.details = {{"cg_error", cg_error}, {"normal_equations_seconds", forming_seconds}};
     if (!converged) {
       if (options_.on_failure == "error")
         solver_failed("eigen_cg", "no convergence in " + std::to_string(report.iterations) + " iterations",
@@ -89,25 +85,6 @@ class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
     }
     report.seconds = clock.seconds();
     return report;
-  }
-
- private:
-  template <class Cg, class Matrix>
-  bool run(Cg& cg, const Matrix& matrix, const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations,
-           double& error) const {
-    cg.setTolerance(options_.tolerance);
-    cg.setMaxIterations(options_.max_iterations);
-    cg.compute(matrix);
-    if (cg.info() != Eigen::Success) {  // the incomplete Cholesky preconditioner broke down
-      iterations = 0;
-      error = std::numeric_limits<double>::infinity();
-      return false;
-    }
-    const Eigen::VectorXd guess = x;
-    x = cg.solveWithGuess(rhs, guess);
-    iterations = int(cg.iterations());
-    error = cg.error();
-    return cg.info() == Eigen::Success && x.allFinite();
   }
 };
 
