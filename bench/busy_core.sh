@@ -30,7 +30,7 @@ seconds() {  # the wall time of one reconstruction, in seconds
   start=$(date +%s.%N)
   "$dtsl" reconstruct "$@" --quiet >/dev/null
   end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+  awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f\n", b - a }'
 }
 summary() {  # best and median of the numbers on stdin
   sort -g | awk '{v[NR] = $1} END {m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.2f | %.2f", v[1], m}'
@@ -52,7 +52,7 @@ for load in idle busy; do
       seconds "$f" "$out/m.ply" --threads 1 >>"$out/one"
     done
     d=$(summary <"$out/default"); o=$(summary <"$out/one")
-    ratio=$(echo "${d##*| } / ${o##*| }" | bc -l)
+    ratio=$(awk -v a="${d##*| }" -v b="${o##*| }" 'BEGIN { print a / b }')
     printf '| %s | %s | %s | %s | %.2f |\n' "$(basename "$f")" "$load" "${d/ | / \/ }" "${o/ | / \/ }" "$ratio"
   done
 done
