@@ -11,7 +11,6 @@ Markdown on stdout. A run that failed in every repeat shows its status (e.g. "sk
 import argparse
 import glob
 import json
-import math
 import os
 import sys
 
