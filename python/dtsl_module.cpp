@@ -438,5 +438,7 @@ Undefined values (genus of an open mesh) are None.)");
 
 overrides are "key=value" strings as `--set`. Failed runs are results (their table rows say why) and
 raise a RuntimeWarning; config errors raise before any run starts. Ctrl-C stops the runs (dtsl.Error);
-running again resumes.)");
+running again resumes. Each run is a forked process; once this process has threads (any earlier dtsl
+call that ran in parallel, e.g. evaluate), each run uses one thread, as OpenMP's pool does not survive
+a fork: call run first, or use `jobs`, or `dtsl run` from the shell, to use every free core.)");
 }

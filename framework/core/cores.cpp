@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #ifdef _OPENMP
@@ -43,6 +44,14 @@ int current_threads() {
 #else
   return 1;
 #endif
+}
+
+int process_threads() {
+  std::error_code ec;
+  int threads = 0;
+  for (std::filesystem::directory_iterator it("/proc/self/task", ec), end; !ec && it != end; it.increment(ec))
+    ++threads;
+  return std::max(1, threads);
 }
 
 }  // namespace dtsl

@@ -15,4 +15,11 @@ void set_threads(int threads);
 /// The thread count later OpenMP regions use (1 without OpenMP).
 int current_threads();
 
+/// The threads this process has now (/proc/self/task; 1 where /proc is missing). More than one before
+/// a fork means the child must not use OpenMP with more than one thread: GNU libgomp keeps its thread
+/// pool across parallel regions, the pool's threads do not exist in a forked child, and the child's
+/// next parallel region waits for them forever (an embedding program such as Python that has already
+/// run a parallel region, or that has threads of its own, is such a parent).
+int process_threads();
+
 }  // namespace dtsl

@@ -165,6 +165,12 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
   std::map<pid_t, Child> running;
   std::size_t next = 0, finished = 0;
   const int threads_per_run = std::max(1, free_cores() / std::max(1, options.jobs));
+  // A parent with threads (an OpenMP pool from earlier work in this process, an embedding program's
+  // own) forks children that may use OpenMP with one thread only (process_threads(), cores.hpp).
+  const bool parent_has_threads = process_threads() > 1;
+  if (parent_has_threads && options.progress && !todo.empty())
+    std::cerr << "each run uses one thread: this process already has threads (earlier parallel work, or an "
+                 "embedding program's own); `dtsl run` in a fresh process uses the free cores\n";
   auto finish = [&](const Child& c, const json& record) {
     ++finished;
     const RunSpec& run = ex.runs[c.index];
@@ -197,7 +203,8 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
         // N runs side by side share the free cores: more threads than free cores make OpenMP's threads
         // wait on each other at every barrier (a run 2-6x slower). OMP_NUM_THREADS, when set, decides
         // unless `threads` is given.
-        if (options.threads > 0) set_threads(options.threads);
+        if (parent_has_threads) set_threads(1);
+        else if (options.threads > 0) set_threads(options.threads);
         else if (!std::getenv("OMP_NUM_THREADS")) set_threads(threads_per_run);
         // The libraries' own chatter (PCL prints to stdout/stderr) goes to the run's log, not the terminal.
         std::error_code ec;
@@ -207,6 +214,9 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
           ::dup2(fileno(log), STDERR_FILENO);
           std::fclose(log);
         }
+        if (parent_has_threads)
+          std::fprintf(stderr, "one thread: the process that started this run has threads of its own "
+                               "(process_threads(), cores.hpp)\n");
         int code = 0;
         try {
           const Dataset d = read_dataset(dir + "/datasets/" + run.dataset_key);

@@ -324,3 +324,29 @@ def test_run_with_a_failing_pipeline_warns(tmp_path):
         directory = dtsl.run(config, results=tmp_path / "r", progress=False)
     assert any("1 of 1 runs failed" in str(w.message) for w in caught)
     assert os.path.isdir(directory)
+
+
+def test_run_after_parallel_work_in_the_same_process(tmp_path):
+    # evaluate() runs OpenMP regions, so this process then has an OpenMP thread pool; a run forked from it
+    # must not wait for the pool's threads, which a forked child does not have. In a fresh interpreter,
+    # so that the order of the tests does not matter; a hang is a failure after the timeout.
+    import subprocess
+    import sys
+    config = tmp_path / "tiny.yaml"
+    config.write_text(CONFIG)
+    script = f"""
+import numpy as np, dtsl
+rng = np.random.default_rng(3)
+p = rng.normal(size=(800, 3)); p /= np.linalg.norm(p, axis=1, keepdims=True)
+v, f, _ = dtsl.reconstruct(p, "pcl_poisson", depth=6)
+dtsl.evaluate((v, f), (v, f), samples=20000)
+print(dtsl.run({str(config)!r}, results={str(tmp_path / "results")!r}, progress=False))
+"""
+    env = {k: v for k, v in os.environ.items() if k != "OMP_NUM_THREADS"}
+    done = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    run_dir = tmp_path / "results" / "pytest_tiny"
+    logs = list(run_dir.glob("*/runs/sphere__poisson/log.txt"))
+    assert logs and (run_dir / logs[0].parts[-4] / "table.md").is_file()
+    if (os.cpu_count() or 1) > 1:
+        assert "one thread" in logs[0].read_text()
