@@ -381,10 +381,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     result.summary["final_refinement"] = to_json(refined.report);
     result.refinement = std::move(refined.report);
   }
-  result.summary["options"] = to_json(stage);
-  result.summary["options"]["velocity"] = options.velocity;  // the stage's was the rounds' (fine_velocity)
-  result.summary["options"]["final_refinement"] = options.final_refinement;
-  result.summary["options"]["max_iterations"] = options.max_iterations;
+  EvolutionOptions given = options;  // the options as given: the stage's were the rounds' (fine velocity)
+  result.summary["options"] = to_json(given);
   result.summary["tmesh"] = {{"control_points", result.level_set.basis().size()},
                              {"leaves", result.level_set.tmesh().leaf_count()},
                              {"finest_level", result.level_set.tmesh().finest_leaf_level()},

@@ -99,6 +99,9 @@ TEST_CASE("coarse-to-fine: the rounds evolve with fine_velocity and its own opti
   CHECK(r.summary["rounds"][1]["velocity"] == "distance_balloon");
   CHECK(r.summary["options"]["velocity"] == "geodesic");
   CHECK(r.summary["options"]["fine_velocity"] == "distance_balloon");
+  // The record gives each velocity's own options, not the rounds' under the first velocity's names.
+  CHECK(r.summary["options"]["velocity_lambda"].get<double>() == 1.0);
+  CHECK(r.summary["options"]["fine_velocity_beta"].get<double>() == 0.3);
   const MeshStats s = mesh_stats(test::zero_set_mesh(r.level_set, points));
   CHECK(s.genus == 1.0);
   CHECK(s.components == 1);
