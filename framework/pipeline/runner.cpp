@@ -201,8 +201,8 @@ RunnerSummary run_experiment(const Experiment& ex, const RunnerOptions& options)
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
         // N runs side by side share the free cores: more threads than free cores make OpenMP's threads
-        // wait on each other at every barrier (a run 2-6x slower). OMP_NUM_THREADS, when set, decides
-        // unless `threads` is given.
+        // wait on each other at every barrier (a run 2-6x slower). A parent with threads allows one
+        // (above); else OMP_NUM_THREADS, when set, decides unless `threads` is given.
         if (parent_has_threads) set_threads(1);
         else if (options.threads > 0) set_threads(options.threads);
         else if (!std::getenv("OMP_NUM_THREADS")) set_threads(threads_per_run);
