@@ -8,6 +8,7 @@
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/support.hpp"
 #include "algorithms/evolution/data_fit.hpp"
+#include "algorithms/evolution/data_wrap.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/sign_guard.hpp"
@@ -314,9 +315,35 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   const std::vector<Vec3> points = level_set_data(all_points, options);
   auto basis = std::make_shared<TSplineBasis>(build_octree(points, options.tmesh));
   const double tmesh_seconds = clock.seconds();
-  const TSpline initial = initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
   EvolutionOptions stage = options;
   stage.final_refinement = false;
+  const auto use_round_settings = [&] {
+    stage.max_iterations = options.fine.max_iterations;
+    if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
+    if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
+  };
+  nlohmann::json wrap_summary;
+  const TSpline initial = [&] {
+    if (options.initial != "wrap")
+      return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
+    // data_wrap.hpp: the wrap decides the topology, so the T-mesh is refined toward the data to its finest
+    // level before the evolution (a coarse T-mesh would blur the wrap's holes and gaps shut), and the one
+    // evolution starts near the data, as a coarse-to-fine round does.
+    const DataWrap wrap(points, options.wrap_alpha, kWrapOffsetSpacings);
+    const auto distance = [&wrap](const Vec3& x) { return wrap(x); };
+    TSpline f = initial_level_set(basis, points, distance);
+    for (int level = f.tmesh().finest_leaf_level() + 1; level <= options.tmesh.max_depth; ++level) {
+      TSpline refined = refine_toward_data(f, points, level, options.fine);
+      if (refined.shared_basis() == f.shared_basis()) break;
+      f = initial_level_set(refined.shared_basis(), points, distance);
+    }
+    const WrapSummary& w = wrap.summary();
+    wrap_summary = {{"spacing", w.spacing}, {"alpha", w.alpha},     {"offset", w.offset},
+                    {"faces", w.faces},     {"genus", w.genus},     {"components", w.components},
+                    {"seconds", w.seconds}};
+    use_round_settings();
+    return f;
+  }();
   LevelSetResult result = evolve_level_set(initial, points, stage);
 
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
@@ -361,9 +388,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     result = std::move(next);
   };
   record_round(result, 0);
-  stage.max_iterations = options.fine.max_iterations;
-  if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
-  if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
+  use_round_settings();
   for (int round = 1; round <= options.fine.levels; ++round) {
     const int level = result.evolved.tmesh().finest_leaf_level() + 1;
     if (level > options.tmesh.max_depth) break;
@@ -390,6 +415,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                              {"initial_control_points", basis->size()},
                              {"initial_finest_level", basis->octree().finest_leaf_level()}};
   result.summary["rounds"] = std::move(rounds);
+  if (!wrap_summary.is_null()) result.summary["wrap"] = std::move(wrap_summary);
   result.summary["iterations"] = int(result.history.size()) - 1;
   result.summary["best_iteration"] = result.best_iteration;
   result.summary["evolution_seconds"] = result.history.back().seconds;

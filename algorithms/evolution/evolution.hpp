@@ -72,6 +72,12 @@ struct EvolutionOptions final : Options {
   /// No nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign, at least this
   /// fraction of its cell size from zero (ours; 0 disables).
   double sign_guard = 0.25;
+  /// The initial level set: "sphere" (paper §2.1; the enclosing sphere below) or "wrap" (ours, data_wrap.hpp:
+  /// the data's alpha wrap, with the T-mesh refined toward the data before one evolution).
+  std::string initial = "sphere";
+  /// The wrap's ball radius in data spacings (data_wrap.hpp): gaps and holes narrower than about twice this stay
+  /// closed, openings of the sampling wider than this let the ball into the solid.
+  double wrap_alpha = 3.0;
   double initial_radius_factor = 1.1;  ///< initial sphere radius over the data's largest distance from the box centre
   /// The initial sphere is clipped to the data's box grown by this, so that it starts inside the T-mesh's
   /// domain (ours; <= 0: the sphere alone).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "framework/core/error.hpp"
 
@@ -46,21 +47,56 @@ TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const Enclo
   return quasi_interpolant(std::move(basis), [&surface](const Vec3& x) { return surface(x); });
 }
 
-TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
-                          double radius_factor, double box_margin) {
+namespace {
+
+std::pair<double, double> coarsest_and_finest_leaf(const TSplineBasis& basis) {
   double coarsest = 0.0, finest = std::numeric_limits<double>::infinity();
-  const Octree& tree = basis->octree();
+  const Octree& tree = basis.octree();
   for (int l = 0; l < tree.leaf_count(); ++l) {
     coarsest = std::max(coarsest, tree.leaf_side(l));
     finest = std::min(finest, tree.leaf_side(l));
   }
-  const EnclosingSurface surface = enclosing_surface(points, radius_factor, box_margin, coarsest);
-  TSpline f = initial_level_set(std::move(basis), surface);
+  return {coarsest, finest};
+}
+
+// f reproduces constants: lowering every coefficient lowers f by the same amount.
+void lower_below_data(TSpline& f, const std::vector<Vec3>& points, double finest) {
   double highest = -std::numeric_limits<double>::infinity();
   for (const Vec3& p : points) highest = std::max(highest, f.evaluate(p));
   const double lower = highest + 0.25 * finest;
   if (lower > 0.0)
     for (double& c : f.coefficients()) c -= lower;
+}
+
+}  // namespace
+
+TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
+                          double radius_factor, double box_margin) {
+  const auto [coarsest, finest] = coarsest_and_finest_leaf(*basis);
+  const EnclosingSurface surface = enclosing_surface(points, radius_factor, box_margin, coarsest);
+  TSpline f = initial_level_set(std::move(basis), surface);
+  lower_below_data(f, points, finest);
+  return f;
+}
+
+TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
+                          const std::function<double(const Vec3&)>& signed_distance) {
+  if (points.empty()) throw AlgorithmError("initial level set: no data points");
+  const double finest = coarsest_and_finest_leaf(*basis).second;
+  TSpline f = quasi_interpolant(std::move(basis), signed_distance);
+  // Lowered locally: every coefficient active at a data point that is not a quarter of the finest leaf
+  // inside drops by that point's shortfall (f = sum c_i R_i with R_i >= 0 summing to 1, so the point then
+  // is), leaving the holes and gaps elsewhere as the distance put them.
+  const double margin = 0.25 * finest;
+  std::vector<double> drop(f.coefficients().size(), 0.0);
+  ActiveBasis active;
+  for (const Vec3& p : points) {
+    const double shortfall = f.evaluate(p) + margin;
+    if (!(shortfall > 0.0)) continue;
+    f.basis().active(p, active);
+    for (int i : active.index) drop[i] = std::max(drop[i], shortfall);
+  }
+  for (std::size_t i = 0; i < drop.size(); ++i) f.coefficients()[i] -= drop[i];
   return f;
 }
 

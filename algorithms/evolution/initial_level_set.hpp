@@ -22,6 +22,7 @@
 // them there; the evolution peels it off as it moves in.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -60,5 +61,11 @@ TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const Enclo
 /// corners would otherwise start outside (tested).
 TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
                           double radius_factor, double box_margin);
+
+/// The quasi-interpolant of any signed distance whose negative side holds the data (the data's wrap,
+/// data_wrap.hpp), lowered like the sphere's above until every data point lies at least a quarter of
+/// the finest leaf side inside.
+TSpline initial_level_set(std::shared_ptr<const TSplineBasis> basis, const std::vector<Vec3>& points,
+                          const std::function<double(const Vec3&)>& signed_distance);
 
 }  // namespace dtsl
