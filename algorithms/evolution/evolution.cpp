@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/support.hpp"
 #include "algorithms/evolution/data_fit.hpp"
+#include "algorithms/evolution/data_carving.hpp"
 #include "algorithms/evolution/data_wrap.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
@@ -324,23 +326,34 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   };
   nlohmann::json wrap_summary;
   const TSpline initial = [&] {
-    if (options.initial != "wrap")
+    if (options.initial == "sphere")
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
-    // data_wrap.hpp: the wrap decides the topology, so the T-mesh is refined toward the data to its finest
-    // level before the evolution (a coarse T-mesh would blur the wrap's holes and gaps shut), and the one
-    // evolution starts near the data, as a coarse-to-fine round does.
-    const DataWrap wrap(points, options.wrap_alpha, kWrapOffsetSpacings);
-    const auto distance = [&wrap](const Vec3& x) { return wrap(x); };
+    // data_wrap.hpp, data_carving.hpp: the data decide the topology, so the T-mesh is refined toward the data
+    // to its finest level before the evolution (a coarse T-mesh would blur the holes and gaps shut), and the
+    // one evolution starts near the data, as a coarse-to-fine round does.
+    std::function<double(const Vec3&)> distance;
+    std::unique_ptr<DataWrap> wrap;
+    std::unique_ptr<DataCarving> carving;
+    if (options.initial == "wrap") {
+      wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
+      distance = [&wrap](const Vec3& x) { return (*wrap)(x); };
+      const WrapSummary& w = wrap->summary();
+      wrap_summary = {{"method", "wrap"}, {"spacing", w.spacing}, {"alpha", w.alpha},   {"offset", w.offset},
+                      {"faces", w.faces}, {"genus", w.genus},     {"components", w.components}, {"seconds", w.seconds}};
+    } else {
+      carving = std::make_unique<DataCarving>(points, options.wrap_alpha);
+      wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
+      distance = [&carving, &wrap](const Vec3& x) { return std::min((*carving)(x), (*wrap)(x)); };
+      const CarvingSummary& c = carving->summary();
+      wrap_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
+                      {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"seconds", c.seconds}};
+    }
     TSpline f = initial_level_set(basis, points, distance);
     for (int level = f.tmesh().finest_leaf_level() + 1; level <= options.tmesh.max_depth; ++level) {
       TSpline refined = refine_toward_data(f, points, level, options.fine);
       if (refined.shared_basis() == f.shared_basis()) break;
       f = initial_level_set(refined.shared_basis(), points, distance);
     }
-    const WrapSummary& w = wrap.summary();
-    wrap_summary = {{"spacing", w.spacing}, {"alpha", w.alpha},     {"offset", w.offset},
-                    {"faces", w.faces},     {"genus", w.genus},     {"components", w.components},
-                    {"seconds", w.seconds}};
     use_round_settings();
     return f;
   }();

@@ -72,10 +72,11 @@ struct EvolutionOptions final : Options {
   /// No nucleation (sign_guard.hpp): a coefficient no zero-set row touches keeps its sign, at least this
   /// fraction of its cell size from zero (ours; 0 disables).
   double sign_guard = 0.25;
-  /// The initial level set: "sphere" (paper §2.1; the enclosing sphere below) or "wrap" (ours, data_wrap.hpp:
-  /// the data's alpha wrap, with the T-mesh refined toward the data before one evolution).
+  /// The initial level set: "sphere" (paper §2.1; the enclosing sphere below), "wrap" (ours, data_wrap.hpp: the
+  /// data's alpha wrap) or "carve" (ours, data_carving.hpp: a carving with a ball of the local spacing's size);
+  /// with wrap or carve the T-mesh is refined toward the data before one evolution.
   std::string initial = "sphere";
-  /// The wrap's ball radius in data spacings (data_wrap.hpp): gaps and holes narrower than about twice this stay
+  /// The wrap's or carving's ball radius in data spacings (data_wrap.hpp, data_carving.hpp): gaps and holes narrower than about twice this stay
   /// closed, openings of the sampling wider than this let the ball into the solid.
   double wrap_alpha = 3.0;
   double initial_radius_factor = 1.1;  ///< initial sphere radius over the data's largest distance from the box centre

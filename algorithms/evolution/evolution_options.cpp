@@ -60,10 +60,11 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "velocity of the coarse-to-fine rounds (its options: fine_velocity_*; ours); empty: `velocity`. The "
           "first evolution approaches the data from the enclosing sphere, the rounds start near it");
   v.field("initial", initial,
-          "initial level set: sphere (paper §2.1: the evolution changes the topology) or wrap (ours: the data's alpha "
-          "wrap decides it; data_wrap.hpp)");
+          "initial level set: sphere (paper §2.1: the evolution changes the topology), wrap (ours: the data's alpha "
+          "wrap decides it, one ball size; data_wrap.hpp) or carve (ours: a Delaunay carving whose ball follows the "
+          "local spacing; data_carving.hpp)");
   v.field("wrap_alpha", wrap_alpha,
-          "with initial: wrap, the carving ball's radius in data spacings: holes and gaps narrower than about twice "
+          "with initial: wrap or carve, the carving ball's radius in data spacings: holes and gaps narrower than about twice "
           "this stay closed, sampling gaps wider than this let it into the solid");
   v.field("solver", solver,
           "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (same meshes, different times: "
@@ -105,7 +106,8 @@ void EvolutionOptions::check() const {
   check_range("band_width", band_width, 0.5, 10.0);
   check_positive("curvature_clamp", curvature_clamp);
   check_range("sign_guard", sign_guard, 0.0, 10.0);
-  require(initial == "sphere" || initial == "wrap", "initial", "must be sphere or wrap, not '" + initial + "'");
+  require(initial == "sphere" || initial == "wrap" || initial == "carve", "initial",
+          "must be sphere, wrap or carve, not '" + initial + "'");
   check_range("wrap_alpha", wrap_alpha, 0.5, 100.0);
   check_range("initial_radius_factor", initial_radius_factor, 1.0, 10.0);
   require(max_points == 0 || max_points >= 100, "max_points",

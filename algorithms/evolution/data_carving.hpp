@@ -1,0 +1,52 @@
+// The data's carving: an initial level set whose topology the data decide, with a carving ball that
+// grows and shrinks with the local sampling spacing (ours; compare data_wrap.hpp, whose ball has one
+// radius for the whole cloud and so slips into the solid wherever the sampling is sparser than the
+// median, e.g. along a density ramp).
+//
+// The space is split by the Delaunay tetrahedrisation of the data points. Starting from the infinite
+// cells, a ball floods from cell to cell through a facet when the largest empty ball that can pass the
+// facet (its circumscribed ball if that is empty — a Gabriel facet — otherwise the smaller of the two
+// cells' circumscribed balls) has a radius of at least alpha x the largest local spacing of the facet's
+// three points: the alpha-shape's gate test (Edelsbrunner and Mucke, "Three-dimensional alpha shapes",
+// ACM TOG 1994) with a radius per facet instead of one alpha. Cells the flood does not reach are inside.
+// The signed distance is the distance to the facets between flooded and unflooded cells, negative in
+// unflooded cells; in flooded cells it is the smaller of that and the distance to the nearest data point
+// (data the flood passed on both sides, an open sheet or a sparse strand, are then a zero of it too). The
+// boundary passes through data points, and initial_level_set.hpp lowers the level set until the data lie
+// inside.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "framework/core/types.hpp"
+
+namespace dtsl {
+
+struct CarvingSummary {
+  double spacing = 0.0;    ///< the data's median local spacing (frame units), for the record
+  double alpha = 0.0;      ///< the ball's radius in local spacings
+  int inside_cells = 0, boundary_facets = 0;
+  double seconds = 0.0;
+};
+
+class DataCarving {
+ public:
+  /// Carves the space around `points` with a ball of alpha_spacings x the local spacing (the mean distance
+  /// to the kSpacingNeighbours nearest points, support.hpp). AlgorithmError for fewer than 4 points,
+  /// non-finite coordinates, all points coinciding or coplanar, or a non-positive alpha.
+  DataCarving(const std::vector<Vec3>& points, double alpha_spacings);
+  ~DataCarving();
+  DataCarving(const DataCarving&) = delete;
+  DataCarving& operator=(const DataCarving&) = delete;
+
+  /// Signed distance from x to the carved boundary (negative inside; thread-safe).
+  double operator()(const Vec3& x) const;
+  const CarvingSummary& summary() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dtsl
