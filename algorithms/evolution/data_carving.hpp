@@ -14,6 +14,12 @@
 // (data the flood passed on both sides, an open sheet or a sparse strand, are then a zero of it too). The
 // boundary passes through data points, and initial_level_set.hpp lowers the level set until the data lie
 // inside.
+//
+// `initial: carve` (evolution.cpp) uses the union of this carving's inside and the alpha wrap's
+// (data_wrap.hpp, same alpha): the min of the two signed distances. Each fails by making the inside too
+// small, in different places: the carving floods a tube thinner than its ball (the suite's thin ring), the
+// wrap's one ball slips into sparse parts (its 50x density ramp came out genus 140: wrap_x); the union
+// keeps both (dev half of the topology suite: results/suite_dev/carve_x against wrap_x).
 #pragma once
 
 #include <memory>

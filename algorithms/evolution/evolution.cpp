@@ -11,6 +11,7 @@
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/data_carving.hpp"
 #include "algorithms/evolution/data_wrap.hpp"
+#include "algorithms/evolution/enclosed_volume.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/sign_guard.hpp"
@@ -311,6 +312,12 @@ std::vector<Vec3> level_set_data(const std::vector<Vec3>& points, const Evolutio
   return thin_points(points, std::size_t(options.max_points), cell);
 }
 
+namespace {
+// With a carve or wrap start, the T-mesh is refined toward the data while its cells stay at least this
+// many median data spacings wide.
+constexpr double kFinestCellSpacings = 0.5;
+}  // namespace
+
 LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const EvolutionOptions& options) {
   options.check();
   Stopwatch clock;
@@ -324,7 +331,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
     if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
   };
-  nlohmann::json wrap_summary;
+  nlohmann::json wrap_summary;  // the record of the carving or wrap: TL summary "initial"
   const TSpline initial = [&] {
     if (options.initial == "sphere")
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
@@ -348,8 +355,20 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       wrap_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
                       {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"seconds", c.seconds}};
     }
+    // enclosed_volume.hpp: data that bound no volume at the ball's scale (an open cut) start from the sphere.
+    const EnclosureCheck enclosure = check_enclosure(points, DataDistance(points).local_spacing(kSpacingNeighbours),
+                                                     wrap_summary.at("spacing").get<double>(), distance);
+    wrap_summary["unenclosed_fraction"] = enclosure.fraction();
+    if (enclosure.fraction() > kMaxUnenclosedFraction) {
+      wrap_summary["fallback"] = "sphere";
+      return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
+    }
     TSpline f = initial_level_set(basis, points, distance);
-    for (int level = f.tmesh().finest_leaf_level() + 1; level <= options.tmesh.max_depth; ++level) {
+    // Cells finer than half the data's spacing would have no data of their own to fit.
+    const double spacing = wrap_summary.at("spacing").get<double>();
+    const auto cell_side = [&f](int level) { return f.tmesh().side() / double(1 << level); };
+    for (int level = f.tmesh().finest_leaf_level() + 1;
+         level <= options.tmesh.max_depth && cell_side(level) >= kFinestCellSpacings * spacing; ++level) {
       TSpline refined = refine_toward_data(f, points, level, options.fine);
       if (refined.shared_basis() == f.shared_basis()) break;
       f = initial_level_set(refined.shared_basis(), points, distance);
@@ -428,7 +447,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                              {"initial_control_points", basis->size()},
                              {"initial_finest_level", basis->octree().finest_leaf_level()}};
   result.summary["rounds"] = std::move(rounds);
-  if (!wrap_summary.is_null()) result.summary["wrap"] = std::move(wrap_summary);
+  if (!wrap_summary.is_null()) result.summary["initial"] = std::move(wrap_summary);
   result.summary["iterations"] = int(result.history.size()) - 1;
   result.summary["best_iteration"] = result.best_iteration;
   result.summary["evolution_seconds"] = result.history.back().seconds;

@@ -57,8 +57,9 @@ const Velocity& EvolutionOptions::velocity_plugin() const {
 void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("velocity", velocity, "normal velocity plugin: geodesic, distance_balloon, distance or paper (its options: velocity_*)");
   v.field("fine_velocity", fine_velocity,
-          "velocity of the coarse-to-fine rounds (its options: fine_velocity_*; ours); empty: `velocity`. The "
-          "first evolution approaches the data from the enclosing sphere, the rounds start near it");
+          "velocity of the coarse-to-fine rounds and of the one evolution from a carve or wrap initial level set "
+          "(its options: fine_velocity_*; ours); empty: `velocity`. The first evolution approaches the data "
+          "from the enclosing sphere, the others start near it");
   v.field("initial", initial,
           "initial level set: sphere (paper §2.1: the evolution changes the topology), wrap (ours: the data's alpha "
           "wrap decides it, one ball size; data_wrap.hpp) or carve (ours: a Delaunay carving whose ball follows the "

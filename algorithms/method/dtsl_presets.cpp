@@ -18,6 +18,7 @@ void register_dtsl_presets() {
            {"evolution_velocity", "paper", "§2.1 (refs [9], [55]): v = -(grad d . n + lambda d kappa), uncapped"},
            {"evolution_fine_levels", "0",
             "§2.1: one evolution on the T-mesh built by octree subdivision (Fig. 3a); coarse-to-fine rounds are ours"},
+           {"evolution_initial", "sphere", "§2.1: the evolution starts from an enclosing surface and changes topology itself"},
            {"evolution_final_refinement", "true", "§2.1: the 'final refinement' step of [55]"},
            {"evolution_tmesh_max_depth", "6", "§2.1: subdivision depth no more than 6"},
            {"refinement_guard", "false", "the final refinement's fit kept whole (the guard is ours)"},

@@ -56,9 +56,13 @@ void check_stages(const Run& r) {
   REQUIRE(stage(r.result, "TL").mesh);
   CHECK(!stage(r.result, "TL").mesh->faces.empty());
   CHECK(r.result.summary.contains("nt"));
-  // The final refinement's topology guard (refinement_guard.hpp), on by default with the refinement:
-  // the initial mesh MI, made from the level set it kept, has no more components than the evolved one.
+  // The final refinement's topology guard (refinement_guard.hpp), on whenever the refinement is (the
+  // `paper` preset; the default starts from the data's carving and does without): the initial mesh MI,
+  // made from the level set it kept, has no more components than the evolved one.
   const nlohmann::json& tl = stage(r.result, "TL").summary;
+  const bool refined = tl.at("options").at("final_refinement").get<bool>();
+  CHECK(refined == tl.contains("final_refinement"));
+  if (!refined) return;
   REQUIRE(tl.contains("refinement_guard"));
   const nlohmann::json& guard = tl.at("refinement_guard");
   INFO(guard.dump());
@@ -113,6 +117,16 @@ TEST_CASE("dtsl: phases switched off leave their stages out and the mesh of the 
   CHECK(mesh_stats(r.result.mesh).watertight);
   // Stages are looked up by name; a missing one is an error naming it and the stages there are.
   CHECK_THROWS_WITH(stage(r.result, "D-Map"), Catch::Contains("D-Map") && Catch::Contains("TL, MT"));
+}
+
+TEST_CASE("dtsl from the enclosing sphere: coarse-to-fine round, guarded final refinement, closed result",
+          "[method][sphere_initial]") {
+  const Run r = run_dtsl("{name: s, shape: sphere, sampler: {type: area, count: 1500}}",
+                         {{"evolution_initial", "sphere"}, {"evolution_final_refinement", "true"}});
+  check_stages(r);
+  CHECK(stage(r.result, "TL").summary.contains("refinement_guard"));
+  CHECK(!stage(r.result, "TL").summary.contains("initial"));
+  CHECK(mesh_stats(r.result.mesh).watertight);
 }
 
 TEST_CASE("dtsl: bad options and input are clear errors", "[method][errors]") {
