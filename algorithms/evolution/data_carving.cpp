@@ -59,6 +59,7 @@ struct DataCarving::Impl {
   explicit Impl(const std::vector<Vec3>& points) : data(points) {}
   DataDistance data;  // throws for non-finite coordinates
   Delaunay delaunay;
+  std::vector<double> spacing;  // per data point
   Triangles boundary;
   std::unique_ptr<Tree> tree;
   mutable std::mutex locate_mutex;  // Delaunay::locate walks with a shared random generator
@@ -91,7 +92,8 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   if (points.size() < 4) throw AlgorithmError("data carving: fewer than 4 data points");
   if (!(alpha_spacings > 0.0)) throw AlgorithmError("data carving: alpha must be a positive multiple of the spacing");
   Stopwatch clock;
-  const std::vector<double> spacing = impl_->data.local_spacing(kSpacingNeighbours);
+  impl_->spacing = impl_->data.local_spacing(kSpacingNeighbours);
+  const std::vector<double>& spacing = impl_->spacing;
   std::vector<double> sorted = spacing;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   CarvingSummary& s = impl_->summary;
@@ -162,5 +164,7 @@ double DataCarving::operator()(const Vec3& x) const {
 }
 
 const CarvingSummary& DataCarving::summary() const { return impl_->summary; }
+
+const std::vector<double>& DataCarving::local_spacing() const { return impl_->spacing; }
 
 }  // namespace dtsl

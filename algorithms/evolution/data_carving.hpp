@@ -49,6 +49,8 @@ class DataCarving {
   /// Signed distance from x to the carved boundary (negative inside; thread-safe).
   double operator()(const Vec3& x) const;
   const CarvingSummary& summary() const;
+  /// Each data point's local spacing, in input order (the ball's radius there is alpha x it).
+  const std::vector<double>& local_spacing() const;
 
  private:
   struct Impl;

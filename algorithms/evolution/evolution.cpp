@@ -331,7 +331,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     if (options.fine.w_distance >= 0.0) stage.w_distance = options.fine.w_distance;
     if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
   };
-  nlohmann::json wrap_summary;  // the record of the carving or wrap: TL summary "initial"
+  nlohmann::json initial_summary;  // the record of the carving or wrap: TL summary "initial"
   const TSpline initial = [&] {
     if (options.initial == "sphere")
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
@@ -345,27 +345,29 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
       distance = [&wrap](const Vec3& x) { return (*wrap)(x); };
       const WrapSummary& w = wrap->summary();
-      wrap_summary = {{"method", "wrap"}, {"spacing", w.spacing}, {"alpha", w.alpha},   {"offset", w.offset},
+      initial_summary = {{"method", "wrap"}, {"spacing", w.spacing}, {"alpha", w.alpha},   {"offset", w.offset},
                       {"faces", w.faces}, {"genus", w.genus},     {"components", w.components}, {"seconds", w.seconds}};
     } else {
       carving = std::make_unique<DataCarving>(points, options.wrap_alpha);
       wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
       distance = [&carving, &wrap](const Vec3& x) { return std::min((*carving)(x), (*wrap)(x)); };
       const CarvingSummary& c = carving->summary();
-      wrap_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
+      initial_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
                       {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"seconds", c.seconds}};
     }
     // enclosed_volume.hpp: data that bound no volume at the ball's scale (an open cut) start from the sphere.
-    const EnclosureCheck enclosure = check_enclosure(points, DataDistance(points).local_spacing(kSpacingNeighbours),
-                                                     wrap_summary.at("spacing").get<double>(), distance);
-    wrap_summary["unenclosed_fraction"] = enclosure.fraction();
+    const std::vector<double> local_spacing =
+        carving ? carving->local_spacing() : DataDistance(points).local_spacing(kSpacingNeighbours);
+    const EnclosureCheck enclosure =
+        check_enclosure(points, local_spacing, initial_summary.at("spacing").get<double>(), distance);
+    initial_summary["unenclosed_fraction"] = enclosure.fraction();
     if (enclosure.fraction() > kMaxUnenclosedFraction) {
-      wrap_summary["fallback"] = "sphere";
+      initial_summary["fallback"] = "sphere";
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
     }
     TSpline f = initial_level_set(basis, points, distance);
     // Cells finer than half the data's spacing would have no data of their own to fit.
-    const double spacing = wrap_summary.at("spacing").get<double>();
+    const double spacing = initial_summary.at("spacing").get<double>();
     const auto cell_side = [&f](int level) { return f.tmesh().side() / double(1 << level); };
     for (int level = f.tmesh().finest_leaf_level() + 1;
          level <= options.tmesh.max_depth && cell_side(level) >= kFinestCellSpacings * spacing; ++level) {
@@ -447,7 +449,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                              {"initial_control_points", basis->size()},
                              {"initial_finest_level", basis->octree().finest_leaf_level()}};
   result.summary["rounds"] = std::move(rounds);
-  if (!wrap_summary.is_null()) result.summary["initial"] = std::move(wrap_summary);
+  if (!initial_summary.is_null()) result.summary["initial"] = std::move(initial_summary);
   result.summary["iterations"] = int(result.history.size()) - 1;
   result.summary["best_iteration"] = result.best_iteration;
   result.summary["evolution_seconds"] = result.history.back().seconds;
