@@ -100,6 +100,9 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
   // 3. Gauss-Newton steps of the direct fit.
   const Octree& mesh = basis->octree();
   const std::vector<double> floors = options.sign_guard > 0.0 ? sign_floors(*basis, options.sign_guard) : std::vector<double>();
+  // A focused refinement (refine-on-flip) fits only the control points its refinement changed: f is
+  // the accepted one everywhere else, and a global refit would move the zero set far from the flips.
+  const std::vector<char>* free = !focus.empty() && report.rounds > 0 ? &report.transfer.changed_flags : nullptr;
   for (int it = 0; it < options.fit_iterations; ++it) {
     LeastSquaresBuilder rows(*basis);
     // Data rows: f(p_k) + sum_i R_i(p_k) delta_i = 0, for the points near the level set.
@@ -128,7 +131,8 @@ RefinedLevelSet refine_level_set(const TSpline& level_set, const std::vector<Vec
       }
       rows.add_gradient_rows(samples.band, direction, rhs, options.w_distance);
     }
-    const LeastSquaresSystem system = rows.finish(options.w_smooth);
+    if (free && rows.rows_touching(*free) == 0) break;  // no data or band near the changed part
+    const LeastSquaresSystem system = rows.finish(options.w_smooth, free);
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(system.unknowns);
     report.solves.push_back(solver.solve(system, delta));
     std::vector<double>& coefficients = f.coefficients();

@@ -15,7 +15,9 @@
 //     farther than outlier_cells leaf sides from the level set are left out of the fit (outliers,
 //     or data the evolution did not reach: they would drag the surface across the cell).
 // Holes in the data keep their coarse cells and get no data rows: the fill stays smooth. With focus
-// points (D-Map's refine-on-flip rounds), step 1 refines only near them and step 3 still refits all of f.
+// points (D-Map's refine-on-flip rounds), step 1 refines only near them and step 3 fits only the
+// control points the refinement changed (new, or with new knots), holding the rest of f: the zero set
+// away from the flips stays where the accepted level set has it.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -190,8 +190,62 @@ void LeastSquaresBuilder::add_rows(Kind kind, const std::vector<Vec3>& x, const 
   (kind == Kind::value ? value_rows_ : gradient_rows_) += rows;
 }
 
-LeastSquaresSystem LeastSquaresBuilder::finish(double smoothness_weight) {
+int LeastSquaresBuilder::rows_touching(const std::vector<char>& free) const {
+  int touching = 0;
+  for (std::size_t r = 0; r + 1 < row_begin_.size(); ++r)
+    for (int e = row_begin_[r]; e < row_begin_[r + 1]; ++e)
+      if (free[std::size_t(column_[std::size_t(e)])]) {
+        ++touching;
+        break;
+      }
+  return touching;
+}
+
+void LeastSquaresBuilder::hold_fixed_columns(const std::vector<char>& free) {
+  if (free.size() != std::size_t(basis_.size()))
+    throw AlgorithmError("least squares: " + std::to_string(free.size()) + " free flags for " +
+                         std::to_string(basis_.size()) + " control points");
+  // Compacted in place, row by row in order: the kept entries of a row keep their order.
+  std::size_t entries = 0, rows = 0;
+  int value_rows = 0, gradient_rows = 0;
+  const std::size_t count = rhs_.size();
+  int begin = row_begin_[0];  // row r's original start (row_begin_ is overwritten behind the reading)
+  for (std::size_t r = 0; r < count; ++r) {
+    const std::size_t first = entries;
+    const int end = row_begin_[r + 1];
+    for (int e = begin; e < end; ++e)
+      if (free[std::size_t(column_[std::size_t(e)])]) {
+        column_[entries] = column_[std::size_t(e)];
+        value_[entries] = value_[std::size_t(e)];
+        ++entries;
+      }
+    begin = end;
+    if (entries == first) continue;  // no free column: a constant, dropped
+    rhs_[rows] = rhs_[r];
+    weight_[rows] = weight_[r];
+    row_begin_[rows + 1] = int(entries);
+    ++rows;
+    (int(r) < value_rows_ ? value_rows : gradient_rows) += 1;
+  }
+  column_.resize(entries);
+  value_.resize(entries);
+  rhs_.resize(rows);
+  weight_.resize(rows);
+  row_begin_.resize(rows + 1);
+  if (rhs_.empty()) throw AlgorithmError("least squares: no row touches a free control point");
+  // Each kind's weight spread over the rows kept, as if only they had been added: the balance of the
+  // terms is then that of a fit of the free part alone (a finely refined free part has many band rows
+  // per data row; weighted by the whole system's counts they would outweigh its data rows).
+  const double value_scale = value_rows > 0 ? double(value_rows_) / value_rows : 1.0;
+  const double gradient_scale = gradient_rows > 0 ? double(gradient_rows_) / gradient_rows : 1.0;
+  for (std::size_t r = 0; r < rows; ++r) weight_[r] *= int(r) < value_rows ? value_scale : gradient_scale;
+  value_rows_ = value_rows;
+  gradient_rows_ = gradient_rows;
+}
+
+LeastSquaresSystem LeastSquaresBuilder::finish(double smoothness_weight, const std::vector<char>* free) {
   if (rhs_.empty()) throw AlgorithmError("least squares: no rows");
+  if (free) hold_fixed_columns(*free);
   LeastSquaresSystem s;
   // Unknowns: the control points touched by a row, in control order (deterministic).
   std::vector<int> unknown_of(basis_.size(), -1);

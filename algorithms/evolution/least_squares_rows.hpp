@@ -92,6 +92,8 @@ class LeastSquaresBuilder {
 
   /// Rows added so far.
   int rows() const { return int(rhs_.size()); }
+  /// Rows added so far with an entry in a flagged control point (what finish(w, &free) would keep).
+  int rows_touching(const std::vector<char>& free) const;
 
   /// One row per point: sum_i R_i(x_k) u_i = target[k]. The kind's weight is spread over its rows:
   /// each gets weight / x.size(). OpenMP-parallel; rows keep the order of the points.
@@ -107,14 +109,20 @@ class LeastSquaresBuilder {
 
   /// The unknowns (control points touched by a row), the rows renumbered, and the Tikhonov rows
   /// (one per unknown) with total weight `smoothness_weight` (spread over them; 0: none).
-  /// AlgorithmError if no row was added.
-  LeastSquaresSystem finish(double smoothness_weight);
+  /// With `free` (one flag per control point of the basis), only flagged control points are unknowns:
+  /// the others are held (their update is zero), their entries leave the rows, and rows left with no
+  /// entry are dropped (a held row is a constant of the objective); each kind's weight is spread over
+  /// the rows kept of it. Value rows must have been added
+  /// before gradient rows (LeastSquaresSystem::value_rows counts the first rows).
+  /// AlgorithmError if no row was added, or none is left.
+  LeastSquaresSystem finish(double smoothness_weight, const std::vector<char>* free = nullptr);
 
  private:
   enum class Kind { value, gradient };
   void add_rows(Kind kind, const std::vector<Vec3>& x, const std::vector<Vec3>* direction,
                 const std::vector<double>& target, double weight, const std::vector<int>* sites = nullptr,
                 const GradientCache* cache = nullptr);
+  void hold_fixed_columns(const std::vector<char>& free);
 
   const TSplineBasis& basis_;
   std::vector<int> row_begin_{0};

@@ -39,6 +39,7 @@ TSpline transfer_level_set(const TSpline& old, Octree refined, TransferReport* r
   TSpline f(std::move(basis), std::move(c));
   TransferReport record;
   for (char k : changed) record.changed += k;
+  record.changed_flags = std::move(changed);
   record.seconds = clock.seconds();
   if (report) *report = record;
   return f;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "algorithms/tspline/tspline.hpp"
 
@@ -19,6 +20,7 @@ Balance balance_of(const Octree& tree);
 /// What a transfer did (the final refinement's record).
 struct TransferReport {
   int changed = 0;           ///< control points whose knots changed (quasi-interpolated)
+  std::vector<char> changed_flags;  ///< per control point of the refined basis: 1 where it changed
   double seconds = 0.0;
 };
 nlohmann::json to_json(const TransferReport& r);

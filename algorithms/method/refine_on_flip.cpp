@@ -34,6 +34,16 @@ bool same_topology(const TriangleMesh& a, const TriangleMesh& b) {
 
 }  // namespace
 
+double mean_data_distance(const DisplacementResult& dr) { return dr.summary.at("errors_after").at("e_avr").get<double>(); }
+
+std::string round_refusal(const DisplacementResult& kept, const DisplacementResult& round) {
+  const std::size_t flips = round.flipped_faces.size();
+  if (flips >= kept.flipped_faces.size()) return std::to_string(flips) + " flips, not fewer: refused";
+  // Fewer flips bought by a mesh farther from the data is no better.
+  if (mean_data_distance(round) > mean_data_distance(kept)) return std::to_string(flips) + " flips but e_avr rose: refused";
+  return "";
+}
+
 DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std::vector<Vec3>& points,
                                               const std::vector<Vec3>& level_set_points,
                                               const DisplacementOptions& options, const FlipRefinement& how) {
@@ -41,6 +51,7 @@ DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std
   DisplacementResult dr = displace_mesh(current.f, current.mi.mesh, points, options);
   const DataScale scale = dr.scale;  // the data do not change between rounds: measured once
   nlohmann::json flips = nlohmann::json::array({dr.flipped_faces.size()}), seconds = nlohmann::json::array();
+  nlohmann::json e_avr = nlohmann::json::array({mean_data_distance(dr)});
   for (int round = 0; round < how.rounds && dr.needs_refinement; ++round) {
     Stopwatch part;
     std::optional<TSpline> refined = refined_near_flips(current, dr, level_set_points, how, *solver);
@@ -75,13 +86,16 @@ DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std
       if (dr.summary.contains(key)) again.summary[key] = dr.summary[key];
     round_seconds["displace"] = part.seconds();
     seconds.push_back(round_seconds);  // where D-Map's time goes (docs/performance.md)
-    flips.push_back(again.flipped_faces.size());
-    if (again.flipped_faces.size() >= dr.flipped_faces.size()) break;
+    e_avr.push_back(mean_data_distance(again));
+    const std::string refused = round_refusal(dr, again);
+    flips.push_back(refused.empty() ? nlohmann::json(again.flipped_faces.size()) : nlohmann::json(refused));
+    if (!refused.empty()) break;
     current = std::move(next);
     dr = std::move(again);
   }
   dr.summary["flips_per_round"] = flips;
   dr.summary["refinement_round_seconds"] = seconds;
+  dr.summary["e_avr_per_round"] = e_avr;
   return dr;
 }
 

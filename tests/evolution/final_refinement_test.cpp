@@ -29,6 +29,18 @@ std::unique_ptr<LevelSetSolver> ldlt() {
   return level_set_solvers().create("eigen_ldlt", "test");
 }
 
+// Refinement down to the T-mesh's max_depth.
+FinalRefinementOptions to_finest_level() {
+  FinalRefinementOptions o;
+  o.target_level = evolved_torus().level_set.tmesh().max_depth();
+  return o;
+}
+
+// The data point with the largest x: a focus for refining around it only.
+Vec3 rightmost(const std::vector<Vec3>& points) {
+  return *std::max_element(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+}
+
 }  // namespace
 
 TEST_CASE("final refinement: finer cells along the surface near data, closer to the data", "[evolution][refine]") {
@@ -83,11 +95,9 @@ TEST_CASE("final refinement: the transfer keeps f where the T-mesh did not chang
 TEST_CASE("final refinement: focus points refine only near them (Phase 2 flips)", "[evolution][refine]") {
   const LevelSetResult& evolved = evolved_torus();
   const std::vector<Vec3>& points = test::torus_data();
-  FinalRefinementOptions o;
-  o.target_level = evolved.level_set.tmesh().max_depth();
+  const FinalRefinementOptions o = to_finest_level();
   auto solver = ldlt();
-  // The data point with the largest x: refine around it only.
-  const Vec3 focus = *std::max_element(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  const Vec3 focus = rightmost(points);
   const RefinedLevelSet local = refine_level_set(evolved.level_set, points, o, *solver, {focus});
   const RefinedLevelSet everywhere = refine_level_set(evolved.level_set, points, o, *solver);
   CHECK(local.report.leaves_split > 0);
@@ -96,6 +106,33 @@ TEST_CASE("final refinement: focus points refine only near them (Phase 2 flips)"
   CHECK(tree.leaf(tree.locate(focus)).level == o.target_level);
   const Vec3 opposite(-focus.x(), focus.y(), focus.z());
   CHECK(tree.leaf(tree.locate(opposite)).level < o.target_level);
+}
+
+TEST_CASE("final refinement: with focus points only the control points the refinement changed are fitted",
+          "[evolution][refine]") {
+  const LevelSetResult& evolved = evolved_torus();
+  const std::vector<Vec3>& points = test::torus_data();
+  const FinalRefinementOptions o = to_finest_level();
+  auto solver = ldlt();
+  const Vec3 focus = rightmost(points);
+  const RefinedLevelSet local = refine_level_set(evolved.level_set, points, o, *solver, {focus});
+  REQUIRE(local.report.rounds > 0);
+  const std::vector<char>& changed = local.report.transfer.changed_flags;
+  REQUIRE(changed.size() == local.level_set.coefficients().size());
+  int held = 0, moved = 0;
+  for (std::size_t i = 0; i < changed.size(); ++i) {
+    if (changed[i]) {
+      moved += local.level_set.coefficients()[i] != local.transferred[i];
+    } else {
+      ++held;
+      CHECK(local.level_set.coefficients()[i] == local.transferred[i]);
+    }
+  }
+  CHECK(held > 0);
+  CHECK(moved > 0);  // the fit did move the changed part
+  // Far from the focus f is the input's, to rounding: the zero set there stays where it was.
+  const Vec3 opposite(-focus.x(), focus.y(), focus.z());
+  CHECK(local.level_set.evaluate(opposite) == Approx(evolved.level_set.evaluate(opposite)).margin(1e-12));
 }
 
 TEST_CASE("final refinement: nothing to split fits anyway, or with skip_fit returns f unchanged", "[evolution][refine]") {

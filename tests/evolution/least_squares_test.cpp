@@ -77,6 +77,70 @@ TEST_CASE("least squares: value and gradient rows are f' and its directional der
   CHECK_THROWS_AS(LeastSquaresBuilder(*basis).finish(1.0), AlgorithmError);
 }
 
+TEST_CASE("least squares: held control points leave the rows, rows with none free are dropped, weights respread", "[evolution][rows]") {
+  auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> c(basis->size());
+  for (double& x : c) x = u(rng);
+  // Two clusters far apart; only the control points of the first (all but one of them) are free.
+  std::vector<Vec3> x;
+  for (const Vec3 centre : {Vec3(-0.7, -0.6, -0.7), Vec3(0.7, 0.6, 0.7)})
+    for (int i = 0; i < 6; ++i) x.push_back(centre + 0.05 * Vec3(u(rng), u(rng), u(rng)));
+  std::vector<char> free(basis->size(), 0), second(basis->size(), 0);
+  ActiveBasis active;
+  for (int k = 0; k < 12; ++k) {
+    basis->active(x[k], active);
+    for (int i : active.index) (k < 6 ? free : second)[i] = 1;
+  }
+  for (int i = 0; i < basis->size(); ++i) REQUIRE(!(free[i] && second[i]));  // the clusters share no support
+  basis->active(x[0], active);
+  free[active.index[0]] = 0;  // one held control point inside the first cluster's support
+  const std::vector<Vec3> direction(x.size(), Vec3(0.2, 0.5, -0.8));
+  LeastSquaresBuilder rows(*basis);
+  rows.add_value_rows(x, std::vector<double>(x.size(), 1.0), 1.0);
+  rows.add_gradient_rows(x, direction, std::vector<double>(x.size(), 2.0), 3.0);
+  CHECK(rows.rows_touching(free) == 12);
+  const LeastSquaresSystem s = rows.finish(0.5, &free);
+  CHECK(s.value_rows == 6);
+  CHECK(s.gradient_rows == 6);
+  CHECK(s.smoothness_rows == s.unknowns);
+  int count = 0;
+  for (char f : free) count += f;
+  CHECK(s.unknowns == count);
+  for (int k = 0; k < s.unknowns; ++k) CHECK(free[s.control[k]]);
+  // Each kept row is the original row over the free control points, with its weight and target.
+  const Eigen::VectorXd cu = s.restrict(c);
+  for (int k = 0; k < 6; ++k) {
+    Vec3 g;
+    double value = 0.0, derivative = 0.0, expected_value = 0.0, expected_derivative = 0.0;
+    basis->active(x[k], active);
+    for (int e = 0; e < active.size(); ++e)
+      if (free[active.index[e]]) {
+        expected_value += active.value[e] * c[active.index[e]];
+        expected_derivative += direction[k].dot(active.gradient[e]) * c[active.index[e]];
+      }
+    for (int e = s.row_begin[k]; e < s.row_begin[k + 1]; ++e) value += s.value[e] * cu[s.column[e]];
+    for (int e = s.row_begin[6 + k]; e < s.row_begin[7 + k]; ++e) derivative += s.value[e] * cu[s.column[e]];
+    CHECK(value == Approx(expected_value).margin(1e-12));
+    CHECK(derivative == Approx(expected_derivative).margin(1e-10));
+    CHECK(s.rhs[k] == 1.0);
+    CHECK(s.rhs[6 + k] == 2.0);
+    CHECK(s.weight[k] == Approx(1.0 / 6));  // each kind's weight spread over its 6 rows kept
+    CHECK(s.weight[6 + k] == Approx(3.0 / 6));
+  }
+  // Bad flags: a wrong count, or nothing free that a row touches.
+  LeastSquaresBuilder again(*basis);
+  again.add_value_rows(x, std::vector<double>(x.size(), 1.0), 1.0);
+  const std::vector<char> short_flags(std::size_t(basis->size() - 1), 1);
+  CHECK_THROWS_AS(again.finish(0.0, &short_flags), AlgorithmError);
+  LeastSquaresBuilder none(*basis);
+  none.add_value_rows(x, std::vector<double>(x.size(), 1.0), 1.0);
+  const std::vector<char> held(std::size_t(basis->size()), 0);
+  CHECK(none.rows_touching(held) == 0);
+  CHECK_THROWS_WITH(none.finish(0.0, &held), Catch::Contains("free control point"));
+}
+
 TEST_CASE("least squares: gradient rows from the band's site cache equal rows computed afresh, step after step",
           "[evolution][rows]") {
   auto basis = std::make_shared<TSplineBasis>(build_octree(test::sphere_data(800), test::test_options("distance", "eigen_ldlt").tmesh));

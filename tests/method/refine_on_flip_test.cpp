@@ -1,6 +1,7 @@
 // Paper §3.2's refine-on-flip loop (algorithms/method/refine_on_flip.hpp): a round whose refined level set
 // does not mesh at MI's step, or meshes with another topology, is refused before it is displaced, and
-// the displacement of the unrefined MI is what comes out.
+// the displacement of the unrefined MI is what comes out; a displaced round is kept only with fewer flips and
+// the data no farther from it.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -99,4 +100,20 @@ TEST_CASE("refine-on-flip refuses a refined level set that does not mesh at MI's
     CHECK(current.f.coefficients() == coefficients);
     CHECK(r.mesh.vertices == unrefined.mesh.vertices);
   }
+}
+
+TEST_CASE("refine-on-flip keeps a round only with fewer flips and the data no farther (e_avr)", "[method][flips]") {
+  const auto result = [](int flips, double e_avr) {
+    DisplacementResult r;
+    r.flipped_faces.assign(std::size_t(flips), 0);
+    r.summary["errors_after"] = {{"e_avr", e_avr}, {"e_max", 10 * e_avr}};
+    return r;
+  };
+  const DisplacementResult kept = result(20, 1e-3);
+  CHECK(mean_data_distance(kept) == 1e-3);
+  CHECK(round_refusal(kept, result(5, 0.9e-3)).empty());
+  CHECK(round_refusal(kept, result(19, 1e-3)).empty());
+  CHECK(round_refusal(kept, result(20, 0.5e-3)) == "20 flips, not fewer: refused");
+  CHECK(round_refusal(kept, result(30, 0.5e-3)) == "30 flips, not fewer: refused");
+  CHECK(round_refusal(kept, result(5, 1.1e-3)) == "5 flips but e_avr rose: refused");
 }
