@@ -234,8 +234,8 @@ void LeastSquaresBuilder::hold_fixed_columns(const std::vector<char>& free) {
   row_begin_.resize(rows + 1);
   if (rhs_.empty()) throw AlgorithmError("least squares: no row touches a free control point");
   // Each kind's weight spread over the rows kept, as if only they had been added: the balance of the
-  // terms is then that of a fit of the free part alone (a finely refined free part has many band rows
-  // per data row; weighted by the whole system's counts they would outweigh its data rows).
+  // terms against the smoothness rows (spread over the free unknowns) is that of a fit of the free part
+  // alone.
   const double value_scale = value_rows > 0 ? double(value_rows_) / value_rows : 1.0;
   const double gradient_scale = gradient_rows > 0 ? double(gradient_rows_) / gradient_rows : 1.0;
   for (std::size_t r = 0; r < rows; ++r) weight_[r] *= int(r) < value_rows ? value_scale : gradient_scale;
