@@ -112,8 +112,8 @@ class LeastSquaresBuilder {
   /// With `free` (one flag per control point of the basis), only flagged control points are unknowns:
   /// the others are held (their update is zero), their entries leave the rows, and rows left with no
   /// entry are dropped (a held row is a constant of the objective); each kind's weight is spread over
-  /// the rows kept of it. Value rows must have been added
-  /// before gradient rows (LeastSquaresSystem::value_rows counts the first rows).
+  /// the rows kept of it. Value rows must have been added before gradient rows
+  /// (LeastSquaresSystem::value_rows counts the first rows).
   /// AlgorithmError if no row was added, or none is left.
   LeastSquaresSystem finish(double smoothness_weight, const std::vector<char>* free = nullptr);
 

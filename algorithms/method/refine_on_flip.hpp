@@ -1,9 +1,9 @@
 // Paper §3.2's fallback for flipped triangles: where displacing MI flips triangles, refine the level set
 // one octree level near the flips (final refinement with the flips as focus), triangulate it again and
 // displace again, at most `rounds` times. A round is kept only when it flips fewer triangles and the
-// data are no farther from its mesh (e_avr); one that
-// cannot refine, cannot be triangulated at MI's step, leaves the data's bounds or changes the topology Phase 1 found
-// (a fit near a thin part can open a spurious handle) ends the loop.
+// data are no farther from its mesh (e_avr); one that cannot refine, cannot be triangulated at MI's
+// step, leaves the data's bounds or changes the topology Phase 1 found (a fit near a thin part can open
+// a spurious handle) ends the loop.
 #pragma once
 
 #include <functional>
