@@ -11,10 +11,12 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <initializer_list>
 #include <limits>
 #include <mutex>
 
 #include "algorithms/evolution/data_distance.hpp"
+#include "algorithms/evolution/data_pieces.hpp"
 #include "algorithms/evolution/support.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -25,8 +27,12 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Vector = Kernel::Vector_3;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<double, Kernel>;  // local spacing
-using CellBase = CGAL::Triangulation_cell_base_with_info_3<char, Kernel>;        // 1: flooded
+struct VertexInfo {
+  double spacing = 0.0;  // the point's local spacing
+  int index = -1;        // the point's index in the input
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, Kernel>;
+using CellBase = CGAL::Triangulation_cell_base_with_info_3<char, Kernel>;  // 1: flooded
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase, CellBase>>;
 using Triangles = std::vector<Kernel::Triangle_3>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>>>;
@@ -53,6 +59,24 @@ bool circumcentre(const Point& a, const Point& b, const Point& c, Point& centre)
   centre = a + CGAL::cross_product((u * u) * v - (v * v) * u, n) / (2.0 * n2);
   return true;
 }
+// Breadth first from the cells in `queue` into every cell not yet flooded through a facet (cell c, the
+// facet opposite its vertex i) that `passes`; returns how many cells it flooded.
+template <class Passes>
+int flood(std::deque<Delaunay::Cell_handle>& queue, const Passes& passes) {
+  int flooded = 0;
+  while (!queue.empty()) {
+    const Delaunay::Cell_handle c = queue.front();
+    queue.pop_front();
+    for (int i = 0; i < 4; ++i) {
+      const Delaunay::Cell_handle n = c->neighbor(i);
+      if (n->info() || !passes(c, i)) continue;
+      n->info() = 1;
+      ++flooded;
+      queue.push_back(n);
+    }
+  }
+  return flooded;
+}
 }  // namespace
 
 struct DataCarving::Impl {
@@ -60,6 +84,7 @@ struct DataCarving::Impl {
   DataDistance data;  // throws for non-finite coordinates
   Delaunay delaunay;
   std::vector<double> spacing;  // per data point
+  std::vector<int> piece;       // per data point (data_pieces.hpp)
   Triangles boundary;
   std::unique_ptr<Tree> tree;
   mutable std::mutex locate_mutex;  // Delaunay::locate walks with a shared random generator
@@ -101,10 +126,10 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   s.alpha = alpha_spacings;
   if (!(s.spacing > 0.0)) throw AlgorithmError("data carving: the data points coincide (zero spacing)");
 
-  std::vector<std::pair<Point, double>> input;
+  std::vector<std::pair<Point, VertexInfo>> input;
   input.reserve(points.size());
   for (std::size_t k = 0; k < points.size(); ++k)
-    input.emplace_back(Point(points[k].x(), points[k].y(), points[k].z()), spacing[k]);
+    input.emplace_back(Point(points[k].x(), points[k].y(), points[k].z()), VertexInfo{spacing[k], int(k)});
   Delaunay& dt = impl_->delaunay;
   dt.insert(input.begin(), input.end());
   if (dt.dimension() < 3) throw AlgorithmError("data carving: the data points are coplanar");
@@ -115,19 +140,32 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
     c->info() = dt.is_infinite(c) ? 1 : 0;
     if (c->info()) queue.push_back(c);
   }
-  while (!queue.empty()) {
-    const Delaunay::Cell_handle c = queue.front();
-    queue.pop_front();
-    for (int i = 0; i < 4; ++i) {
-      const Delaunay::Cell_handle n = c->neighbor(i);
-      if (n->info()) continue;
-      double local = 0.0;
-      for (int k = 1; k < 4; ++k) local = std::max(local, c->vertex((i + k) & 3)->info());
-      if (impl_->gate_radius(c, i) >= alpha_spacings * local) {
-        n->info() = 1;
-        queue.push_back(n);
-      }
+  flood(queue, [&](Delaunay::Cell_handle c, int i) {
+    double local = 0.0;
+    for (int k = 1; k < 4; ++k) local = std::max(local, c->vertex((i + k) & 3)->info().spacing);
+    return impl_->gate_radius(c, i) >= alpha_spacings * local;
+  });
+  // Second flood: on from the flooded cells through every facet whose corners lie on different pieces of
+  // the data, however narrow (see the header).
+  impl_->piece = data_pieces(impl_->data, kSpacingNeighbours);
+  const std::vector<int>& piece = impl_->piece;
+  s.data_pieces = 1 + *std::max_element(piece.begin(), piece.end());
+  const auto pieces_differ = [&](std::initializer_list<Delaunay::Vertex_handle> corners) {
+    int first = -1;
+    for (const Delaunay::Vertex_handle v : corners) {
+      if (dt.is_infinite(v)) continue;
+      const int p = piece[std::size_t(v->info().index)];
+      if (first < 0) first = p;
+      else if (p != first) return true;
     }
+    return false;
+  };
+  if (s.data_pieces > 1) {
+    for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+      if (c->info()) queue.push_back(c);
+    s.reopened_cells = flood(queue, [&](Delaunay::Cell_handle c, int i) {
+      return pieces_differ({c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)});
+    });
   }
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     if (c->info()) continue;
@@ -148,10 +186,12 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
 
 DataCarving::~DataCarving() = default;
 
-double DataCarving::operator()(const Vec3& x) const {
+CarvingValue DataCarving::evaluate(const Vec3& x) const {
   const Point q(x.x(), x.y(), x.z());
-  const double to_data = impl_->data.nearest(x).distance;
-  if (!impl_->tree) return to_data;  // all carved (data without volume): outside everywhere
+  const NearestData nearest = impl_->data.nearest(x);
+  const double to_data = nearest.distance;
+  const int piece = impl_->piece[std::size_t(nearest.index)];
+  if (!impl_->tree) return {to_data, piece};  // all carved (data without volume): outside everywhere
   const double d = std::sqrt(impl_->tree->squared_distance(q));
   bool flooded;
   {
@@ -160,11 +200,15 @@ double DataCarving::operator()(const Vec3& x) const {
     flooded = impl_->hint->info() != 0;
   }
   // Outside, data the flood passed on both sides (an open sheet, a sparse strand) are as near as the boundary.
-  return flooded ? std::min(d, to_data) : -d;
+  return {flooded ? std::min(d, to_data) : -d, piece};
 }
+
+double DataCarving::operator()(const Vec3& x) const { return evaluate(x).distance; }
 
 const CarvingSummary& DataCarving::summary() const { return impl_->summary; }
 
 const std::vector<double>& DataCarving::local_spacing() const { return impl_->spacing; }
+
+const std::vector<int>& DataCarving::pieces() const { return impl_->piece; }
 
 }  // namespace dtsl

@@ -89,6 +89,24 @@ std::vector<double> DataDistance::local_spacing(int k) const {
   return spacing;
 }
 
+std::vector<int> DataDistance::nearest_neighbours(int k) const {
+  if (k < 1) throw AlgorithmError("nearest neighbours: k must be at least 1, got " + std::to_string(k));
+  const long n = long(impl_->points.size());
+  std::vector<int> out(std::size_t(n) * std::size_t(k), -1);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long i = 0; i < n; ++i) {
+    Search search(*impl_->tree, impl_->points[i], unsigned(std::min<long>(k + 1, n)), 0.0, true,
+                  Distance(CGAL::make_property_map(impl_->points)));
+    int count = 0;
+    for (const auto& hit : search) {
+      if (hit.first == std::size_t(i)) continue;
+      if (count == k) break;
+      out[std::size_t(i) * k + count++] = int(hit.first);
+    }
+  }
+  return out;
+}
+
 std::vector<NearestData> DataDistance::nearest_all(const std::vector<Vec3>& queries) const {
   std::vector<NearestData> out(queries.size());
   const long n = long(queries.size());

@@ -37,6 +37,9 @@ class DataDistance {
   /// points (k >= 1; fewer when there are fewer points). Scale-free lengths of the evolution are
   /// multiples of it. OpenMP-parallel; throws AlgorithmError for k < 1.
   std::vector<double> local_spacing(int k) const;
+  /// The k nearest other data points of every point, row-major (point i's are [i k, i k + k)), nearest
+  /// first; -1 where there are fewer than k other points. OpenMP-parallel; AlgorithmError for k < 1.
+  std::vector<int> nearest_neighbours(int k) const;
 
  private:
   struct Impl;

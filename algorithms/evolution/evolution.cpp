@@ -10,6 +10,7 @@
 #include "algorithms/evolution/support.hpp"
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/data_carving.hpp"
+#include "algorithms/evolution/data_pieces.hpp"
 #include "algorithms/evolution/data_wrap.hpp"
 #include "algorithms/evolution/enclosed_volume.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
@@ -341,6 +342,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     std::function<double(const Vec3&)> distance;
     std::unique_ptr<DataWrap> wrap;
     std::unique_ptr<DataCarving> carving;
+    std::vector<std::unique_ptr<DataWrap>> piece_wraps;  // carve: the wrap of each piece of the data
     if (options.initial == "wrap") {
       wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
       distance = [&wrap](const Vec3& x) { return (*wrap)(x); };
@@ -349,11 +351,29 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                       {"faces", w.faces}, {"genus", w.genus},     {"components", w.components}, {"seconds", w.seconds}};
     } else {
       carving = std::make_unique<DataCarving>(points, options.wrap_alpha);
-      wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
-      distance = [&carving, &wrap](const Vec3& x) { return std::min((*carving)(x), (*wrap)(x)); };
+      // One wrap per piece of the data (data_pieces.hpp): a wrap of all the data would join two pieces
+      // across the gap the carving opened between them. A piece too small or flat to wrap has the carving only.
+      const int pieces = carving->summary().data_pieces;
+      if (pieces == 1) {
+        piece_wraps.push_back(std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings));
+      } else {
+        for (const std::vector<Vec3>& piece : points_by_piece(points, carving->pieces())) {
+          try {
+            piece_wraps.push_back(std::make_unique<DataWrap>(piece, options.wrap_alpha, kWrapOffsetSpacings));
+          } catch (const AlgorithmError&) {
+            piece_wraps.push_back(nullptr);
+          }
+        }
+      }
+      distance = [&carving, &piece_wraps](const Vec3& x) {
+        const CarvingValue c = carving->evaluate(x);
+        const DataWrap* piece_wrap = piece_wraps[std::size_t(c.piece)].get();
+        return piece_wrap ? std::min(c.distance, (*piece_wrap)(x)) : c.distance;
+      };
       const CarvingSummary& c = carving->summary();
       initial_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
-                      {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"seconds", c.seconds}};
+                      {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"data_pieces", c.data_pieces}, {"reopened_cells", c.reopened_cells},
+                         {"seconds", c.seconds}};
     }
     // enclosed_volume.hpp: data that bound no volume at the ball's scale (an open cut) start from the sphere.
     const std::vector<double> local_spacing =

@@ -63,10 +63,11 @@ void EvolutionOptions::visit(FieldVisitor& v) {
   v.field("initial", initial,
           "initial level set: sphere (paper §2.1: the evolution changes the topology), wrap (ours: the data's alpha "
           "wrap decides it, one ball size; data_wrap.hpp) or carve (ours: a Delaunay carving whose ball follows the "
-          "local spacing; data_carving.hpp)");
+          "local spacing, which opens every gap between separate pieces of the data; data_carving.hpp)");
   v.field("wrap_alpha", wrap_alpha,
           "with initial: wrap or carve, the carving ball's radius in data spacings: holes and gaps narrower than about twice "
-          "this stay closed, sampling gaps wider than this let it into the solid");
+          "this stay closed (with carve, not gaps between separate pieces), sampling gaps wider than this let it into "
+          "the solid");
   v.field("solver", solver,
           "least-squares solver plugin: eigen_ldlt, eigen_cg, ceres or cholmod (same meshes, different times: "
           "configs/ablation_evolution_solver.yaml)");

@@ -74,3 +74,23 @@ TEST_CASE("the carving rejects too few, coplanar or coincident points and a non-
   CHECK_THROWS_AS(DataCarving(std::vector<Vec3>(10, Vec3(0.1, 0.2, 0.3)), 2.0), AlgorithmError);
   CHECK_THROWS_AS(DataCarving(sphere_data(200), 0.0), AlgorithmError);
 }
+
+TEST_CASE("the carving opens the gap between two spheres a few spacings apart", "[carve]") {
+  // Gap 0.095 in the frame, about 3.5 spacings (pair.cpp): the ball of 2.5 spacings cannot pass it
+  // everywhere, the second flood between the data's pieces does.
+  const std::vector<Vec3> points =
+      dataset_points("{name: pair, shape: {type: pair, object: sphere, gap: 0.1}, sampler: {type: area, count: 5000}}");
+  const DataCarving carving(points, 2.5);
+  CHECK(carving.summary().data_pieces == 2);
+  CHECK(carving.summary().reopened_cells > 0);
+  const Vec3 left = centroid(points, -1), right = centroid(points, 1);
+  CHECK(carving(left) < 0.0);
+  CHECK(carving(right) < 0.0);
+  // Across the gap, on and off the axis between the centres: outside.
+  for (const double y : {0.0, 0.1, -0.2})
+    for (const double z : {0.0, 0.15}) {
+      INFO("y " << y << " z " << z);
+      CHECK(carving(Vec3(0.0, y, z)) > 0.0);
+    }
+  CHECK(carving.evaluate(left).piece != carving.evaluate(right).piece);
+}
