@@ -32,7 +32,8 @@ struct VertexInfo {
   int index = -1;        // the point's index in the input
 };
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, Kernel>;
-using CellBase = CGAL::Triangulation_cell_base_with_info_3<char, Kernel>;  // 1: flooded
+using CellBase = CGAL::Triangulation_cell_base_with_info_3<char, Kernel>;
+constexpr char kInside = 0, kFlooded = 1, kReopened = 2;  // a cell's info: which flood reached it
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase, CellBase>>;
 using Triangles = std::vector<Kernel::Triangle_3>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>>>;
@@ -60,9 +61,9 @@ bool circumcentre(const Point& a, const Point& b, const Point& c, Point& centre)
   return true;
 }
 // Breadth first from the cells in `queue` into every cell not yet flooded through a facet (cell c, the
-// facet opposite its vertex i) that `passes`; returns how many cells it flooded.
+// facet opposite its vertex i) that `passes`, marking them; returns how many cells it flooded.
 template <class Passes>
-int flood(std::deque<Delaunay::Cell_handle>& queue, const Passes& passes) {
+int flood(std::deque<Delaunay::Cell_handle>& queue, char mark, const Passes& passes) {
   int flooded = 0;
   while (!queue.empty()) {
     const Delaunay::Cell_handle c = queue.front();
@@ -70,7 +71,7 @@ int flood(std::deque<Delaunay::Cell_handle>& queue, const Passes& passes) {
     for (int i = 0; i < 4; ++i) {
       const Delaunay::Cell_handle n = c->neighbor(i);
       if (n->info() || !passes(c, i)) continue;
-      n->info() = 1;
+      n->info() = mark;
       ++flooded;
       queue.push_back(n);
     }
@@ -137,10 +138,10 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   // Flood from the infinite cells (breadth first; a cell is flooded once).
   std::deque<Delaunay::Cell_handle> queue;
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    c->info() = dt.is_infinite(c) ? 1 : 0;
+    c->info() = dt.is_infinite(c) ? kFlooded : kInside;
     if (c->info()) queue.push_back(c);
   }
-  flood(queue, [&](Delaunay::Cell_handle c, int i) {
+  flood(queue, kFlooded, [&](Delaunay::Cell_handle c, int i) {
     double local = 0.0;
     for (int k = 1; k < 4; ++k) local = std::max(local, c->vertex((i + k) & 3)->info().spacing);
     return impl_->gate_radius(c, i) >= alpha_spacings * local;
@@ -163,7 +164,7 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   if (s.data_pieces > 1) {
     for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
       if (c->info()) queue.push_back(c);
-    s.reopened_cells = flood(queue, [&](Delaunay::Cell_handle c, int i) {
+    s.reopened_cells = flood(queue, kReopened, [&](Delaunay::Cell_handle c, int i) {
       return pieces_differ({c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)});
     });
   }
@@ -191,16 +192,16 @@ CarvingValue DataCarving::evaluate(const Vec3& x) const {
   const NearestData nearest = impl_->data.nearest(x);
   const double to_data = nearest.distance;
   const int piece = impl_->piece[std::size_t(nearest.index)];
-  if (!impl_->tree) return {to_data, piece};  // all carved (data without volume): outside everywhere
+  if (!impl_->tree) return {to_data, piece, false};  // all carved (data without volume): outside everywhere
   const double d = std::sqrt(impl_->tree->squared_distance(q));
-  bool flooded;
+  char cell;
   {
     const std::lock_guard<std::mutex> lock(impl_->locate_mutex);
     impl_->hint = impl_->delaunay.locate(q, impl_->hint);
-    flooded = impl_->hint->info() != 0;
+    cell = impl_->hint->info();
   }
   // Outside, data the flood passed on both sides (an open sheet, a sparse strand) are as near as the boundary.
-  return {flooded ? std::min(d, to_data) : -d, piece};
+  return {cell != kInside ? std::min(d, to_data) : -d, piece, cell == kReopened};
 }
 
 double DataCarving::operator()(const Vec3& x) const { return evaluate(x).distance; }

@@ -51,6 +51,7 @@ struct CarvingSummary {
 struct CarvingValue {
   double distance = 0.0;  ///< signed distance to the carved boundary (negative inside)
   int piece = 0;          ///< the piece (pieces()) of the data point nearest to x
+  bool reopened = false;  ///< x lies in a cell the second flood opened: a gap between pieces
 };
 
 class DataCarving {

@@ -94,7 +94,8 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
 }  // namespace
 
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
-                                const EvolutionOptions& options_in) {
+                                const EvolutionOptions& options_in,
+                                const std::function<bool(const Vec3&)>& between_pieces) {
   EvolutionOptions options = options_in;  // to_json() of the record visits its fields, which takes a mutable struct
   options.check();
   if (points.empty()) throw AlgorithmError("level-set evolution: no data points");
@@ -114,6 +115,11 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
   sampling.hessians = true;
 
   const std::vector<double> floors = sign_floors(basis, options.sign_guard);
+  std::vector<char> held_outside;  // hold_outside (sign_guard.hpp)
+  if (between_pieces) {
+    held_outside.resize(std::size_t(basis.size()));
+    for (int i = 0; i < basis.size(); ++i) held_outside[std::size_t(i)] = between_pieces(basis.greville(i));
+  }
   const DataDistance data(points);
   std::optional<SupportData> support;
   if (velocity.wants_support()) support.emplace(data, points);
@@ -264,6 +270,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       last_update[system.control[k]] = update[k];
     }
     if (options.sign_guard > 0.0) record.guarded = guard_signs(system, system.value_rows, floors, before, c);
+    if (!held_outside.empty()) record.guarded += hold_outside(held_outside, floors, before, c);
     record.seconds = clock.seconds();
     history.push_back(record);
   }
@@ -333,6 +340,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     if (!options.fine_velocity.empty()) stage.use_velocity(options.fine_velocity, options.fine_velocity_plugin());
   };
   nlohmann::json initial_summary;  // the record of the carving or wrap: TL summary "initial"
+  std::unique_ptr<DataCarving> carving;
   const TSpline initial = [&] {
     if (options.initial == "sphere")
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
@@ -341,7 +349,6 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     // one evolution starts near the data, as a coarse-to-fine round does.
     std::function<double(const Vec3&)> distance;
     std::unique_ptr<DataWrap> wrap;
-    std::unique_ptr<DataCarving> carving;
     std::vector<std::unique_ptr<DataWrap>> piece_wraps;  // carve: the wrap of each piece of the data
     if (options.initial == "wrap") {
       wrap = std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings);
@@ -398,7 +405,11 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     use_round_settings();
     return f;
   }();
-  LevelSetResult result = evolve_level_set(initial, points, stage);
+  // The gaps the carving opened between separate pieces of the data stay open (hold_outside, sign_guard.hpp).
+  std::function<bool(const Vec3&)> between_pieces;
+  if (carving && carving->summary().data_pieces > 1)
+    between_pieces = [&carving](const Vec3& x) { return carving->evaluate(x).reopened; };
+  LevelSetResult result = evolve_level_set(initial, points, stage, between_pieces);
 
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
   nlohmann::json rounds = nlohmann::json::array();

@@ -26,6 +26,7 @@
 // ("level set vanished": data with no volume). The iterate kept is the one with the smallest measure.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -160,7 +161,10 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
 
 /// The evolution from a given level set (any T-mesh: adaptive, uniform, refined), then the final
 /// refinement if options.final_refinement. options.tmesh and initial_radius_factor are not used.
+/// `between_pieces`, when given, says which positions lie in a gap between separate pieces of the data:
+/// the controls whose Greville point it holds stay positive (hold_outside, sign_guard.hpp).
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
-                                const EvolutionOptions& options);
+                                const EvolutionOptions& options,
+                                const std::function<bool(const Vec3&)>& between_pieces = {});
 
 }  // namespace dtsl

@@ -32,4 +32,18 @@ int guard_signs(const LeastSquaresSystem& system, int surface_rows, const std::v
   return changed;
 }
 
+int hold_outside(const std::vector<char>& held, const std::vector<double>& floors, const std::vector<double>& before,
+                 std::vector<double>& after) {
+  int changed = 0;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    if (!held[i] || !(before[i] > 0.0)) continue;
+    const double least = std::min(floors[i], before[i]);
+    if (after[i] < least) {
+      after[i] = least;
+      ++changed;
+    }
+  }
+  return changed;
+}
+
 }  // namespace dtsl

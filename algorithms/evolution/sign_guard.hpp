@@ -28,4 +28,12 @@ std::vector<double> sign_floors(const TSplineBasis& basis, double fraction);
 int guard_signs(const LeastSquaresSystem& system, int surface_rows, const std::vector<double>& floors,
                 const std::vector<double>& before, std::vector<double>& after);
 
+/// Separation (ours): the control points flagged in `held` (their Greville point lies in a gap the carving
+/// opened between separate pieces of the data, data_carving.hpp) stay positive, at least min(floor_i,
+/// c_i before the step), whether the front touches them or not. Across a gap of a few cells the two
+/// fronts share these controls, and the least-squares step would otherwise pull them through zero and
+/// grow a neck between the pieces, a topology change the data do not support. Returns how many it changed.
+int hold_outside(const std::vector<char>& held, const std::vector<double>& floors, const std::vector<double>& before,
+                 std::vector<double>& after);
+
 }  // namespace dtsl

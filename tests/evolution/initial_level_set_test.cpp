@@ -100,3 +100,16 @@ TEST_CASE("sign guard: controls away from the zero-set rows keep their sign", "[
   for (int i = 0; i < basis->size(); ++i)
     if (std::find(s.control.begin(), s.control.end(), i) == s.control.end()) CHECK(after[i] == 0.3);  // not unknowns
 }
+
+TEST_CASE("hold outside: flagged positive controls stay positive, touched by the front or not", "[evolution][guard]") {
+  const std::vector<double> floors{0.1, 0.1, 0.1, 0.1, 0.1};
+  const std::vector<char> held{1, 1, 1, 0, 1};
+  const std::vector<double> before{0.5, 0.05, 0.3, 0.5, -0.2};
+  std::vector<double> after{-0.4, -0.1, 0.2, -0.4, -0.6};
+  CHECK(hold_outside(held, floors, before, after) == 2);
+  CHECK(after[0] == 0.1);   // pulled through zero: held at the floor
+  CHECK(after[1] == 0.05);  // below the floor before: held where it was
+  CHECK(after[2] == 0.2);   // moved but still above the floor: free
+  CHECK(after[3] == -0.4);  // not flagged: free
+  CHECK(after[4] == -0.6);  // inside before: not held
+}
