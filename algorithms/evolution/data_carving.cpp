@@ -92,6 +92,13 @@ struct DataCarving::Impl {
   mutable Delaunay::Cell_handle hint;
   CarvingSummary summary;
 
+  // Which flood reached the cell holding q (kInside, kFlooded, kReopened).
+  char cell_at(const Point& q) const {
+    const std::lock_guard<std::mutex> lock(locate_mutex);
+    hint = delaunay.locate(q, hint);
+    return hint->info();
+  }
+
   double cell_radius(Delaunay::Cell_handle c) const {
     if (delaunay.is_infinite(c)) return kUnbounded;
     return circumradius(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
@@ -192,19 +199,16 @@ CarvingValue DataCarving::evaluate(const Vec3& x) const {
   const NearestData nearest = impl_->data.nearest(x);
   const double to_data = nearest.distance;
   const int piece = impl_->piece[std::size_t(nearest.index)];
-  if (!impl_->tree) return {to_data, piece, false};  // all carved (data without volume): outside everywhere
+  if (!impl_->tree) return {to_data, piece};  // all carved (data without volume): outside everywhere
   const double d = std::sqrt(impl_->tree->squared_distance(q));
-  char cell;
-  {
-    const std::lock_guard<std::mutex> lock(impl_->locate_mutex);
-    impl_->hint = impl_->delaunay.locate(q, impl_->hint);
-    cell = impl_->hint->info();
-  }
+  const char cell = impl_->cell_at(q);
   // Outside, data the flood passed on both sides (an open sheet, a sparse strand) are as near as the boundary.
-  return {cell != kInside ? std::min(d, to_data) : -d, piece, cell == kReopened};
+  return {cell != kInside ? std::min(d, to_data) : -d, piece};
 }
 
 double DataCarving::operator()(const Vec3& x) const { return evaluate(x).distance; }
+
+bool DataCarving::reopened(const Vec3& x) const { return impl_->cell_at(Point(x.x(), x.y(), x.z())) == kReopened; }
 
 const CarvingSummary& DataCarving::summary() const { return impl_->summary; }
 

@@ -51,7 +51,6 @@ struct CarvingSummary {
 struct CarvingValue {
   double distance = 0.0;  ///< signed distance to the carved boundary (negative inside)
   int piece = 0;          ///< the piece (pieces()) of the data point nearest to x
-  bool reopened = false;  ///< x lies in a cell the second flood opened: a gap between pieces
 };
 
 class DataCarving {
@@ -68,6 +67,8 @@ class DataCarving {
   double operator()(const Vec3& x) const;
   /// That distance and the piece of the data point nearest to x (thread-safe).
   CarvingValue evaluate(const Vec3& x) const;
+  /// Whether x lies in a cell the second flood opened, a gap between pieces (thread-safe).
+  bool reopened(const Vec3& x) const;
   const CarvingSummary& summary() const;
   /// Each data point's local spacing, in input order (the ball's radius there is alpha x it).
   const std::vector<double>& local_spacing() const;

@@ -361,7 +361,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       // One wrap per piece of the data (data_pieces.hpp): a wrap of all the data would join two pieces
       // across the gap the carving opened between them. A piece too small or flat to wrap has the carving only.
       const int pieces = carving->summary().data_pieces;
-      if (pieces == 1) {
+      if (pieces == 1) {  // as the wrap start: a wrap that fails is an error
         piece_wraps.push_back(std::make_unique<DataWrap>(points, options.wrap_alpha, kWrapOffsetSpacings));
       } else {
         for (const std::vector<Vec3>& piece : points_by_piece(points, carving->pieces())) {
@@ -379,8 +379,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       };
       const CarvingSummary& c = carving->summary();
       initial_summary = {{"method", "carve"}, {"spacing", c.spacing}, {"alpha_spacings", c.alpha},
-                      {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets}, {"data_pieces", c.data_pieces}, {"reopened_cells", c.reopened_cells},
-                         {"seconds", c.seconds}};
+                         {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets},
+                         {"data_pieces", c.data_pieces}, {"reopened_cells", c.reopened_cells}, {"seconds", c.seconds}};
     }
     // enclosed_volume.hpp: data that bound no volume at the ball's scale (an open cut) start from the sphere.
     const std::vector<double> local_spacing =
@@ -408,7 +408,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   // The gaps the carving opened between separate pieces of the data stay open (hold_outside, sign_guard.hpp).
   std::function<bool(const Vec3&)> between_pieces;
   if (carving && carving->summary().data_pieces > 1)
-    between_pieces = [&carving](const Vec3& x) { return carving->evaluate(x).reopened; };
+    between_pieces = [&carving](const Vec3& x) { return carving->reopened(x); };
   LevelSetResult result = evolve_level_set(initial, points, stage, between_pieces);
 
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.

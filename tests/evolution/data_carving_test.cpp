@@ -87,10 +87,14 @@ TEST_CASE("the carving opens the gap between two spheres a few spacings apart", 
   CHECK(carving(left) < 0.0);
   CHECK(carving(right) < 0.0);
   // Across the gap, on and off the axis between the centres: outside.
+  int reopened = 0;
   for (const double y : {0.0, 0.1, -0.2})
     for (const double z : {0.0, 0.15}) {
       INFO("y " << y << " z " << z);
       CHECK(carving(Vec3(0.0, y, z)) > 0.0);
+      reopened += carving.reopened(Vec3(0.0, y, z));
     }
+  CHECK(reopened > 0);  // the second flood opened the gap's middle
+  CHECK_FALSE(carving.reopened(left));
   CHECK(carving.evaluate(left).piece != carving.evaluate(right).piece);
 }
