@@ -456,6 +456,7 @@ PolygonizeResult marching_triangulation(const ImplicitFunction& f, const std::ve
   s.details = {{"step", delta},
                {"seeds_from", data.empty() ? "grid" : "data"},
                {"skipped_seeds", seeded.skipped_seeds},
+               {"duplicate_marches", seeded.duplicates},
                {"splits", stats.splits},
                {"merges", stats.merges},
                {"slits_closed", stats.slits_closed},

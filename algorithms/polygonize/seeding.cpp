@@ -30,6 +30,25 @@ void collect(const ImplicitFunction& f, const std::vector<NewtonProjection>& pro
   }
 }
 
+/// Whether most of `part` lies on the components already in `mesh` (vertices in `earlier`): more than
+/// half of up to 64 of its vertices, spread over it, have a vertex of `mesh` within `reach`. Two
+/// distinct components of a zero set cannot be that close over most of one of them.
+bool remeshes_earlier(const TriangleMesh& part, const TriangleMesh& mesh, const SpatialHash& earlier, double reach) {
+  if (mesh.vertices.empty() || part.vertices.empty()) return false;
+  const std::size_t n = part.vertices.size(), stride = std::max<std::size_t>(1, n / 64);
+  std::size_t samples = 0, on_earlier = 0;
+  for (std::size_t v = 0; v < n; v += stride) {
+    ++samples;
+    const Vec3& p = part.vertices[v];
+    bool near = false;
+    earlier.for_each_near(p, reach, [&](int id) {
+      near = near || (mesh.vertices[static_cast<std::size_t>(id)] - p).norm() <= reach;
+    });
+    on_earlier += near;
+  }
+  return 2 * on_earlier > samples;
+}
+
 }  // namespace
 
 SeedCandidates foot_point_seeds(const ImplicitFunction& f, const std::vector<Vec3>& data,
@@ -137,6 +156,7 @@ SeededMeshing mesh_from_seeds(const std::vector<Vec3>& seeds, double cover_dista
   SeededMeshing out;
   std::vector<Vec3> remaining = seeds;  // P, in input order: the first left is the next seed (step 4)
   std::vector<char> keep;
+  SpatialHash earlier(proximity_radius);  // the vertices of the components kept so far
   while (!remaining.empty()) {
     const Vec3 seed = remaining.front();
     ComponentMesh part = march(seed);
@@ -148,18 +168,26 @@ SeededMeshing mesh_from_seeds(const std::vector<Vec3>& seeds, double cover_dista
         if ((remaining[static_cast<std::size_t>(i)] - seed).norm() <= skip_radius) keep[static_cast<std::size_t>(i)] = 0;
       keep[0] = 0;  // never retry the same seed
     } else {
-      if (++out.components > max_components)
-        throw AlgorithmError("seeding: more than " + std::to_string(max_components) +
-                             " components; the level set is fragmented (raise max_components if intended)");
-      // Step 5: drop the seeds the new component covers.
+      // Step 5: drop the seeds the new mesh covers; the seed itself lies on the component it started,
+      // so it is never marched from again even if the mesh's triangles are a little off the surface there.
       const MeshProximity near(part.mesh, proximity_radius);
 #pragma omp parallel for schedule(dynamic, 1024)
       for (long i = 0; i < n; ++i)
         if (near.closest(remaining[static_cast<std::size_t>(i)]).distance <= cover_distance) keep[static_cast<std::size_t>(i)] = 0;
-      // The seed itself lies on the component it started; never march from it again even if the
-      // mesh's triangles are a little off the surface there.
       keep[0] = 0;
-      append_mesh(out.mesh, part.mesh);
+      // The same surface marched again from a seed the first mesh missed by more than cover_distance
+      // (its triangles cut a tight bend there): dropped.
+      if (remeshes_earlier(part.mesh, out.mesh, earlier, proximity_radius / 2)) {
+        ++out.duplicates;
+      } else {
+        if (++out.components > max_components)
+          throw AlgorithmError("seeding: more than " + std::to_string(max_components) +
+                               " components; the level set is fragmented (raise max_components if intended)");
+        const int offset = static_cast<int>(out.mesh.vertices.size());
+        for (std::size_t v = 0; v < part.mesh.vertices.size(); ++v)
+          earlier.insert(offset + static_cast<int>(v), part.mesh.vertices[v]);
+        append_mesh(out.mesh, part.mesh);
+      }
     }
     std::size_t w = 0;
     for (std::size_t i = 0; i < remaining.size(); ++i)

@@ -71,12 +71,16 @@ struct SeededMeshing {
   TriangleMesh mesh;                  ///< all components, concatenated
   std::size_t components = 0;         ///< marched components
   std::size_t skipped_seeds = 0;      ///< seeds that could not start a march
+  std::size_t duplicates = 0;         ///< marches that meshed a kept component again, dropped
 };
 
 /// Steps 3-7 over `seeds` (already on f = 0). A seed is covered by a component when its distance to
 /// that component's mesh is below `cover_distance`; a skipped seed drops the seeds within
 /// `skip_radius` of it. `proximity_radius` bounds the vertex search of the distance test (about twice
-/// the mesh's edge length). Throws AlgorithmError when more than `max_components` are started.
+/// the mesh's edge length). A march whose mesh lies mostly within half `proximity_radius` (about an
+/// edge) of the components kept so far meshed one of them again (from a seed farther than
+/// `cover_distance` from its triangles): it is dropped, with the seeds it covers. Throws AlgorithmError
+/// when more than `max_components` are started.
 SeededMeshing mesh_from_seeds(const std::vector<Vec3>& seeds, double cover_distance, double proximity_radius,
                               double skip_radius, std::size_t max_components,
                               const std::function<ComponentMesh(const Vec3& seed)>& march);

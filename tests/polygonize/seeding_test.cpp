@@ -59,6 +59,37 @@ TEST_CASE("mesh_from_seeds starts one march per uncovered component", "[polygoni
   CHECK_THROWS_AS(mesh_from_seeds(seeds, 0.01, 1.0, 0.1, 1, march), AlgorithmError);
 }
 
+TEST_CASE("mesh_from_seeds drops a march that meshes a kept component again", "[polygonize][seeding]") {
+  // One surface, the unit square z = 0, meshed as a grid of edge h. A seed 0.3 h above it is farther
+  // than cover_distance from the first mesh (a tight bend the triangles cut), and its march meshes
+  // the same square again. A second square far away is a component of its own.
+  const double h = 0.05;
+  const auto square = [&](const Vec3& corner) {
+    ComponentMesh c;
+    const int n = 21;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) c.mesh.vertices.push_back(corner + Vec3(i * h, j * h, 0));
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        const int a = j * n + i;
+        c.mesh.faces.push_back({{a, a + 1, a + n + 1}});
+        c.mesh.faces.push_back({{a, a + n + 1, a + n}});
+      }
+    return c;
+  };
+  const std::vector<Vec3> seeds = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.52, 0.3 * h), Vec3(3.5, 0.5, 0)};
+  int marches = 0;
+  const auto march = [&](const Vec3& s) {
+    ++marches;
+    return square(s.x() > 2 ? Vec3(3, 0, 0) : Vec3(0, 0, 0));
+  };
+  const SeededMeshing r = mesh_from_seeds(seeds, 0.25 * h, 2 * h, 2 * h, 10, march);
+  CHECK(marches == 3);
+  CHECK(r.components == 2);
+  CHECK(r.duplicates == 1);
+  CHECK(r.mesh.vertices.size() == 2 * 21 * 21);
+}
+
 TEST_CASE("grid seeds find every component crossing the grid", "[polygonize][seeding]") {
   const TwoSpheres shape(Vec3(-0.6, 0.0, 0.0), 0.45, Vec3(0.65, 0.1, 0.0), 0.4);
   const SeedCandidates s = grid_seeds(shape, shape.domain(), 0.1, NewtonOptions());
