@@ -393,6 +393,9 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
     }
     TSpline f = initial_level_set(basis, points, distance);
+    // One split per level from the octree's finest leaf to max_depth, near the data: where the octree
+    // already reached max_depth somewhere, nothing is split. Splitting every leaf near the data down to
+    // max_depth instead cost 2.1x the dev half's time for one input's topology (docs/design.md §8).
     // Cells finer than half the data's spacing would have no data of their own to fit.
     const double spacing = initial_summary.at("spacing").get<double>();
     const auto cell_side = [&f](int level) { return f.tmesh().side() / double(1 << level); };
