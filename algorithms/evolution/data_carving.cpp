@@ -125,7 +125,9 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   if (points.size() < 4) throw AlgorithmError("data carving: fewer than 4 data points");
   if (!(alpha_spacings > 0.0)) throw AlgorithmError("data carving: alpha must be a positive multiple of the spacing");
   Stopwatch clock;
-  impl_->spacing = impl_->data.local_spacing(kSpacingNeighbours);
+  // One neighbour search gives the local spacing and the data's pieces (data_pieces.hpp).
+  const NearestNeighbours neighbours = impl_->data.nearest_neighbours(kSpacingNeighbours);
+  impl_->spacing = mean_neighbour_distance(neighbours);
   const std::vector<double>& spacing = impl_->spacing;
   std::vector<double> sorted = spacing;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
@@ -155,7 +157,7 @@ DataCarving::DataCarving(const std::vector<Vec3>& points, double alpha_spacings)
   });
   // Second flood: on from the flooded cells through every facet whose corners lie on different pieces of
   // the data, however narrow (see the header).
-  impl_->piece = data_pieces(impl_->data, kSpacingNeighbours);
+  impl_->piece = data_pieces(neighbours);
   const std::vector<int>& piece = impl_->piece;
   s.data_pieces = 1 + *std::max_element(piece.begin(), piece.end());
   const auto pieces_differ = [&](std::initializer_list<Delaunay::Vertex_handle> corners) {

@@ -67,44 +67,47 @@ NearestData DataDistance::nearest(const Vec3& x) const {
 
 std::vector<double> DataDistance::local_spacing(int k) const {
   if (k < 1) throw AlgorithmError("local spacing: k must be at least 1, got " + std::to_string(k));
+  return mean_neighbour_distance(nearest_neighbours(k));
+}
+
+NearestNeighbours DataDistance::nearest_neighbours(int k) const {
+  if (k < 1) throw AlgorithmError("nearest neighbours: k must be at least 1, got " + std::to_string(k));
   const long n = long(impl_->points.size());
-  const int neighbours = int(std::min<long>(k, n - 1));
-  std::vector<double> spacing(n, 0.0);
-  if (neighbours < 1) return spacing;
+  NearestNeighbours out;
+  out.k = k;
+  out.index.assign(std::size_t(n) * std::size_t(k), -1);
+  out.distance.assign(std::size_t(n) * std::size_t(k), 0.0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (long i = 0; i < n; ++i) {
     // k + 1 neighbours: the point itself comes first at distance 0.
-    Search search(*impl_->tree, impl_->points[i], unsigned(neighbours + 1), 0.0, true,
-                  Distance(CGAL::make_property_map(impl_->points)));
-    double sum = 0.0;
-    int count = 0;
-    for (const auto& hit : search) {
-      if (hit.first == std::size_t(i)) continue;
-      if (count == neighbours) break;
-      sum += std::sqrt(hit.second);
-      ++count;
-    }
-    spacing[i] = count > 0 ? sum / count : 0.0;
-  }
-  return spacing;
-}
-
-std::vector<int> DataDistance::nearest_neighbours(int k) const {
-  if (k < 1) throw AlgorithmError("nearest neighbours: k must be at least 1, got " + std::to_string(k));
-  const long n = long(impl_->points.size());
-  std::vector<int> out(std::size_t(n) * std::size_t(k), -1);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (long i = 0; i < n; ++i) {
     Search search(*impl_->tree, impl_->points[i], unsigned(std::min<long>(k + 1, n)), 0.0, true,
                   Distance(CGAL::make_property_map(impl_->points)));
     int count = 0;
     for (const auto& hit : search) {
       if (hit.first == std::size_t(i)) continue;
       if (count == k) break;
-      out[std::size_t(i) * k + count++] = int(hit.first);
+      const std::size_t slot = std::size_t(i) * std::size_t(k) + std::size_t(count++);
+      out.index[slot] = int(hit.first);
+      out.distance[slot] = std::sqrt(hit.second);
     }
   }
   return out;
+}
+
+std::vector<double> mean_neighbour_distance(const NearestNeighbours& neighbours) {
+  const std::size_t k = std::size_t(neighbours.k), n = k > 0 ? neighbours.index.size() / k : 0;
+  std::vector<double> mean(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t m = 0; m < k; ++m)
+      if (neighbours.index[i * k + m] >= 0) {
+        sum += neighbours.distance[i * k + m];
+        ++count;
+      }
+    mean[i] = count > 0 ? sum / count : 0.0;
+  }
+  return mean;
 }
 
 std::vector<NearestData> DataDistance::nearest_all(const std::vector<Vec3>& queries) const {

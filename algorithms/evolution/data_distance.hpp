@@ -17,6 +17,18 @@ struct NearestData {
   int index = -1;                 ///< p = points[index]
 };
 
+/// The k nearest other data points of every point, row-major (point i's are [i k, i k + k)), nearest
+/// first; index -1 (distance 0) where there are fewer than k other points.
+struct NearestNeighbours {
+  int k = 0;
+  std::vector<int> index;
+  std::vector<double> distance;
+};
+
+/// The mean distance of every point to its neighbours (those with index >= 0; 0 for none): the local
+/// spacing of DataDistance::local_spacing.
+std::vector<double> mean_neighbour_distance(const NearestNeighbours& neighbours);
+
 class DataDistance {
  public:
   /// Builds the tree now, so queries are const and thread-safe. AlgorithmError for no points or a
@@ -37,9 +49,8 @@ class DataDistance {
   /// points (k >= 1; fewer when there are fewer points). Scale-free lengths of the evolution are
   /// multiples of it. OpenMP-parallel; throws AlgorithmError for k < 1.
   std::vector<double> local_spacing(int k) const;
-  /// The k nearest other data points of every point, row-major (point i's are [i k, i k + k)), nearest
-  /// first; -1 where there are fewer than k other points. OpenMP-parallel; AlgorithmError for k < 1.
-  std::vector<int> nearest_neighbours(int k) const;
+  /// The k nearest other data points of every point. OpenMP-parallel; AlgorithmError for k < 1.
+  NearestNeighbours nearest_neighbours(int k) const;
 
  private:
   struct Impl;

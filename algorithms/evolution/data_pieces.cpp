@@ -7,13 +7,12 @@
 
 namespace dtsl {
 
-std::vector<int> data_pieces(const DataDistance& data, int k) {
-  const std::vector<int> neighbours = data.nearest_neighbours(k);
-  const std::size_t n = data.size();
+std::vector<int> data_pieces(const NearestNeighbours& neighbours) {
+  const std::size_t k = std::size_t(neighbours.k), n = k > 0 ? neighbours.index.size() / k : 0;
   UnionFind sets(n);
   for (std::size_t i = 0; i < n; ++i)
-    for (int j = 0; j < k; ++j)
-      if (const int other = neighbours[i * std::size_t(k) + std::size_t(j)]; other >= 0) sets.unite(i, std::size_t(other));
+    for (std::size_t j = 0; j < k; ++j)
+      if (const int other = neighbours.index[i * k + j]; other >= 0) sets.unite(i, std::size_t(other));
   std::vector<int> label(n, -1), piece_of_root(n, -1);
   int pieces = 0;
   for (std::size_t i = 0; i < n; ++i) {

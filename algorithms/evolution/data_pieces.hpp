@@ -11,9 +11,9 @@
 
 namespace dtsl {
 
-/// Per data point, its piece, numbered 0.. in the order of each piece's first point. AlgorithmError for
-/// k < 1.
-std::vector<int> data_pieces(const DataDistance& data, int k);
+/// Per data point, its piece (the components of the graph of `neighbours`,
+/// DataDistance::nearest_neighbours), numbered 0.. in the order of each piece's first point.
+std::vector<int> data_pieces(const NearestNeighbours& neighbours);
 
 /// The points of each piece (piece[i] is point i's, 0..), in input order. AlgorithmError when the sizes
 /// differ or a label is negative.

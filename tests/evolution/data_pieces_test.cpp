@@ -18,7 +18,7 @@ TEST_CASE("the k nearest neighbours of every point equal brute force, nearest fi
   const std::vector<Vec3>& points = torus_data();
   const DataDistance data(points);
   const int k = 5;
-  const std::vector<int> neighbours = data.nearest_neighbours(k);
+  const std::vector<int> neighbours = data.nearest_neighbours(k).index;
   REQUIRE(neighbours.size() == points.size() * k);
   for (std::size_t i = 0; i < points.size(); i += 37) {
     std::vector<double> all;
@@ -33,7 +33,7 @@ TEST_CASE("the k nearest neighbours of every point equal brute force, nearest fi
     }
   }
   const std::vector<Vec3> three{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
-  const std::vector<int> padded = DataDistance(three).nearest_neighbours(4);
+  const std::vector<int> padded = DataDistance(three).nearest_neighbours(4).index;
   CHECK(std::count(padded.begin(), padded.end(), -1) == 3 * 2);
   CHECK_THROWS_AS(data.nearest_neighbours(0), AlgorithmError);
 }
@@ -41,7 +41,7 @@ TEST_CASE("the k nearest neighbours of every point equal brute force, nearest fi
 TEST_CASE("two spheres a few spacings apart are two pieces, one per sphere", "[pieces]") {
   const std::vector<Vec3> points =
       dataset_points("{name: pair, shape: {type: pair, object: sphere, gap: 0.1}, sampler: {type: area, count: 5000}}");
-  const std::vector<int> piece = data_pieces(DataDistance(points), kSpacingNeighbours);
+  const std::vector<int> piece = data_pieces(DataDistance(points).nearest_neighbours(kSpacingNeighbours));
   REQUIRE(piece.size() == points.size());
   CHECK(std::set<int>(piece.begin(), piece.end()) == std::set<int>{0, 1});
   // The spheres lie on either side of x = 0: a point's piece is the first point's exactly when its side is.
@@ -58,7 +58,7 @@ TEST_CASE("a torus with a 40x density ramp is one piece", "[pieces]") {
   const std::vector<Vec3> points = dataset_points(
       "{name: torus40, shape: {type: torus, R: 1.0, r: 0.4}, "
       "sampler: {type: area, count: 4000, density_ratio: 40, density_axis: x}}");
-  const std::vector<int> piece = data_pieces(DataDistance(points), kSpacingNeighbours);
+  const std::vector<int> piece = data_pieces(DataDistance(points).nearest_neighbours(kSpacingNeighbours));
   CHECK(*std::max_element(piece.begin(), piece.end()) == 0);
 }
 
@@ -66,5 +66,5 @@ TEST_CASE("points by piece rejects labels that do not match the points", "[piece
   const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(1, 0, 0)};
   CHECK_THROWS_AS(points_by_piece(points, {0}), AlgorithmError);
   CHECK_THROWS_AS(points_by_piece(points, {0, -1}), AlgorithmError);
-  CHECK_THROWS_AS(data_pieces(DataDistance(points), 0), AlgorithmError);
+  CHECK_THROWS_AS(data_pieces(DataDistance(points).nearest_neighbours(0)), AlgorithmError);
 }
