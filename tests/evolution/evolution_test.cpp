@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <limits>
 
 #include "tests/evolution/fixtures.hpp"
 
@@ -43,6 +44,25 @@ std::string describe(const Outcome& o) {
     << o.evolved_distance.max << ", final mean " << o.final_distance.mean << " max " << o.final_distance.max
     << "; |grad f| on the final zero set [" << o.final_gradient.first << ", " << o.final_gradient.second << "]";
   return s.str();
+}
+
+// The stopping contract (evolution.hpp): the kept iterate has the smallest progress measure (data to
+// level set plus level set to data), and no step was taken after the measure's two-step mean had risen
+// 2 % above its last decrease; a run that ends so says "distance rising".
+void check_stopping(const LevelSetResult& r, const EvolutionOptions& o) {
+  const auto& h = r.history;
+  std::vector<double> progress;
+  for (const IterationRecord& k : h) progress.push_back(k.mean_distance + k.mean_surface_distance);
+  CHECK(int(std::min_element(progress.begin(), progress.end()) - progress.begin()) == r.best_iteration);
+  double reference = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < progress.size(); ++k) {
+    const double smoothed = 0.5 * (progress[k] + progress[k == 0 ? 0 : k - 1]);
+    const bool risen = smoothed > reference * 1.02;
+    if (smoothed < reference * (1.0 - o.distance_tolerance)) reference = smoothed;
+    INFO("step " << k << " of " << progress.size() - 1 << ", stop: " << r.stop_reason);
+    if (k + 1 < progress.size()) CHECK(!risen);
+    else if (r.stop_reason == "distance rising") CHECK(risen);
+  }
 }
 
 std::vector<std::string> all_solvers() {
@@ -83,6 +103,7 @@ TEST_CASE("evolution: a sphere is wrapped within tolerance, every velocity x sol
           CHECK(h[k + 1].seconds >= h[k].seconds);
         }
         CHECK(!h.back().solve.has_value());
+        check_stopping(o.result, test::test_options(velocity, solver));
       }
     }
 }
