@@ -23,8 +23,9 @@
 // when mean |v| falls below velocity_tolerance ("at rest"), when that measure (averaged over the last
 // two steps: `geodesic` jitters with period two) has not fallen by distance_tolerance for `patience`
 // steps ("distance stalled") or has risen 2 % above its last decrease ("distance rising": past the
-// best it climbs and does not come back), at max_iterations ("iteration cap"), or when the zero set has vanished
-// ("level set vanished": data with no volume). The iterate kept is the one with the smallest measure.
+// best it climbs and does not come back), at max_iterations ("iteration cap"), or when the zero set
+// has vanished ("level set vanished": data with no volume). The iterate kept is the one with the
+// smallest measure.
 #pragma once
 
 #include <functional>

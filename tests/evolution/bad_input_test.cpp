@@ -78,7 +78,8 @@ TEST_CASE("bad input: points on a plane or a line end in a documented result, no
       INFO("stop: " << r.stop_reason << " after " << r.history.size() - 1 << " steps");
       CHECK(int(r.history.size()) <= o.max_iterations + 1);
       CHECK((r.stop_reason == "level set vanished" || r.stop_reason == "distance stalled" ||
-             r.stop_reason == "distance rising" || r.stop_reason == "at rest" || r.stop_reason == "iteration cap"));
+             r.stop_reason == "distance rising" || r.stop_reason == "at rest" ||
+             r.stop_reason == "iteration cap"));
       for (double c : r.level_set.coefficients()) CHECK(std::isfinite(c));
       // The kept iterate is no farther from the data than the start.
       CHECK(r.history[r.best_iteration].mean_distance <= r.history.front().mean_distance);
