@@ -22,10 +22,10 @@
 // distance |f(p)| / |grad f(p)| plus the mean level-set-to-data distance d(x_j); the evolution stops
 // when mean |v| falls below velocity_tolerance ("at rest"), when that measure (averaged over the last
 // two steps: `geodesic` jitters with period two) has not fallen by distance_tolerance for `patience`
-// steps ("distance stalled") or has risen 2 % above its last decrease ("distance rising": past the
-// best it climbs and does not come back), at max_iterations ("iteration cap"), or when the zero set
-// has vanished ("level set vanished": data with no volume). The iterate kept is the one with the
-// smallest measure.
+// steps ("distance stalled") or has risen 2 % above the last value that fell by it ("distance rising":
+// in the suite's evolutions the measure, once past its best, climbs and does not come back below it),
+// at max_iterations ("iteration cap"), or when the zero set has vanished ("level set vanished": data
+// with no volume). The iterate kept is the one with the smallest measure.
 #pragma once
 
 #include <functional>
@@ -142,7 +142,8 @@ struct LevelSetResult {
   TSpline evolved;                      ///< the evolution's result before the final refinement
   std::vector<IterationRecord> history;
   int best_iteration = 0;  ///< the iterate kept: smallest mean_distance + mean_surface_distance
-  std::string stop_reason;  ///< "at rest", "distance stalled", "distance rising", "iteration cap", "level set vanished"
+  /// "at rest", "distance stalled", "distance rising", "iteration cap", "level set vanished"
+  std::string stop_reason;
   std::optional<RefinementReport> refinement;
   /// With the final refinement: `evolved` transferred onto level_set's T-mesh, before the fit.
   std::vector<double> transferred;

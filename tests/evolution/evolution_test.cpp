@@ -46,9 +46,10 @@ std::string describe(const Outcome& o) {
   return s.str();
 }
 
-// The stopping contract (evolution.hpp): the kept iterate has the smallest progress measure (data to
-// level set plus level set to data), and no step was taken after the measure's two-step mean had risen
-// 2 % above its last decrease; a run that ends so says "distance rising".
+// The stopping contract of one evolution (evolution.hpp; a single round, fine.levels = 0): the kept
+// iterate has the smallest progress measure (data to level set plus level set to data), and no step was
+// taken after the measure's two-step mean had risen 2 % (kDistanceRise) above the last value that fell
+// by distance_tolerance; a run that ends so says "distance rising".
 void check_stopping(const LevelSetResult& r, const EvolutionOptions& o) {
   const auto& h = r.history;
   std::vector<double> progress;
