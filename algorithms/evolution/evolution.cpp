@@ -17,6 +17,7 @@
 #include "algorithms/evolution/least_squares_rows.hpp"
 #include "algorithms/evolution/sign_guard.hpp"
 #include "algorithms/evolution/thin_points.hpp"
+#include "algorithms/evolution/thin_walls.hpp"
 #include "algorithms/evolution/zero_set.hpp"
 #include "framework/config/yaml_options.hpp"
 #include "framework/core/error.hpp"
@@ -42,6 +43,7 @@ nlohmann::json to_json(const IterationRecord& r) {
                       {"band_points", r.band_points},
                       {"unknowns", r.unknowns},
                       {"guarded", r.guarded},
+                      {"held_walls", r.held_walls},
                       {"unsupported_points", r.unsupported_points},
                       {"velocity_residual", r.velocity_residual},
                       {"mean_speed", r.mean_speed},
@@ -104,7 +106,7 @@ std::vector<double> speeds(const ZeroSetSamples& samples, const DataDistance& da
 
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
                                 const EvolutionOptions& options_in,
-                                const std::function<bool(const Vec3&)>& between_pieces) {
+                                const std::function<bool(const Vec3&)>& between_pieces, const ThinWalls& walls) {
   EvolutionOptions options = options_in;  // to_json() of the record visits its fields, which takes a mutable struct
   options.check();
   if (points.empty()) throw AlgorithmError("level-set evolution: no data points");
@@ -238,6 +240,13 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
         target[j] = -v[j] * samples.surface[j].gradient.norm();  // f'(x_j) = -v |grad f|
       }
       rows.add_value_rows(x, target, 1.0);
+      // Thin walls keep their inside (thin_walls.hpp): one row per wall whose middle rose above its
+      // depth, each weighted as one zero-set row (the kind's weight is spread over its rows). Value rows
+      // like the velocity's, so the controls they touch count as at the surface for guard_signs.
+      const WallRows held = wall_rows(walls, f, dt);
+      record.held_walls = int(held.position.size());
+      if (!held.position.empty())
+        rows.add_value_rows(held.position, held.target, double(held.position.size()) / double(x.size()));
     }
     if (options.w_distance > 0.0) {
       std::vector<Vec3> direction(samples.band.size());
@@ -263,7 +272,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       // How much of the prescribed motion the step realises: |A_v c' - b_v| / |b_v| over the
       // velocity rows (0: exactly; the distance-field and smoothness terms pull it away from 0).
       double r2 = 0.0, b2 = 0.0;
-      for (int r = 0; r < system.value_rows; ++r) {
+      for (int r = 0; r < system.value_rows - record.held_walls; ++r) {
         double a = -system.rhs[r];
         for (int e = system.row_begin[r]; e < system.row_begin[r + 1]; ++e) a += system.value[e] * update[system.column[e]];
         r2 += a * a;
@@ -422,7 +431,14 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   std::function<bool(const Vec3&)> between_pieces;
   if (carving && carving->summary().data_pieces > 1)
     between_pieces = [&carving](const Vec3& x) { return carving->reopened(x); };
-  LevelSetResult result = evolve_level_set(initial, points, stage, between_pieces);
+  // The walls of the data as the start orients them (thin_walls.hpp); not from the sphere, which says
+  // nothing of the data's faces.
+  ThinWalls walls;
+  if (options.initial != "sphere" && !initial_summary.contains("fallback")) {
+    walls = thin_walls(points, DataDistance(points), initial, initial.tmesh());
+    initial_summary["thin_walls"] = walls.size();
+  }
+  LevelSetResult result = evolve_level_set(initial, points, stage, between_pieces, walls);
 
   // Coarse-to-fine rounds (coarse_to_fine.hpp): refine near the data, evolve again from there.
   nlohmann::json rounds = nlohmann::json::array();
@@ -472,7 +488,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     if (level > options.tmesh.max_depth) break;
     TSpline refined = refine_toward_data(result.evolved, points, level, options.fine);
     if (refined.shared_basis() == result.evolved.shared_basis()) break;  // nothing left to split
-    append(evolve_level_set(refined, points, stage), round);
+    append(evolve_level_set(refined, points, stage, {}, walls), round);
     record_round(result, round);
   }
 

@@ -37,6 +37,7 @@
 #include "algorithms/evolution/coarse_to_fine.hpp"
 #include "algorithms/evolution/final_refinement.hpp"
 #include "algorithms/evolution/solver.hpp"
+#include "algorithms/evolution/thin_walls.hpp"
 #include "algorithms/evolution/velocity.hpp"
 #include "algorithms/tspline/tspline.hpp"
 #include "framework/config/options.hpp"
@@ -126,6 +127,7 @@ struct IterationRecord {
   double time_step = 0.0;            ///< dt of the step taken (0 for the last record: no step)
   int surface_points = 0, band_points = 0, unknowns = 0;
   int guarded = 0;                   ///< coefficients the no-nucleation guard held (sign_guard.hpp)
+  int held_walls = 0;                ///< walls whose middle the step held inside (thin_walls.hpp)
   int unsupported_points = 0;        ///< zero-set points spanning empty space (support.hpp)
   double mean_speed = 0.0, max_speed = 0.0;  ///< mean and max |v| over the x_j
   double mean_distance = 0.0, max_distance = 0.0;  ///< data to level set, |f(p)| / |grad f(p)|
@@ -165,9 +167,11 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& points, const Evolutio
 /// The evolution from a given level set (any T-mesh: adaptive, uniform, refined), then the final
 /// refinement if options.final_refinement. options.tmesh and initial_radius_factor are not used.
 /// `between_pieces`, when given, says which positions lie in a gap between separate pieces of the data:
-/// the controls whose Greville point it holds stay positive (hold_outside, sign_guard.hpp).
+/// the controls whose Greville point it holds stay positive (hold_outside, sign_guard.hpp). `walls`
+/// (thin_walls.hpp, from a start the data decided) keep their middles inside.
 LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>& points,
                                 const EvolutionOptions& options,
-                                const std::function<bool(const Vec3&)>& between_pieces = {});
+                                const std::function<bool(const Vec3&)>& between_pieces = {},
+                                const ThinWalls& walls = {});
 
 }  // namespace dtsl

@@ -1,0 +1,105 @@
+// Thin walls (thin_walls.hpp): found between two faces that face away from each other and are close,
+// not on a single face or across a thick part; their rows come only where the middle rose too high.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "algorithms/evolution/thin_walls.hpp"
+#include "algorithms/tspline/octree.hpp"
+
+using namespace dtsl;
+
+namespace {
+
+/// A slab |z| <= half_thickness around z = shift, as a level set that wraps both faces from outside:
+/// f = |z - shift| - half_thickness - offset (negative inside), the start's orientation of the data.
+class Slab final : public ImplicitFunction {
+ public:
+  Slab(double half_thickness, double offset, double shift = 0.0)
+      : half_(half_thickness), offset_(offset), shift_(shift) {}
+  double evaluate(const Vec3& x, Vec3* gradient, Mat3* hessian) const override {
+    const double z = x.z() - shift_;
+    if (gradient) *gradient = Vec3(0.0, 0.0, z >= 0.0 ? 1.0 : -1.0);
+    if (hessian) hessian->setZero();
+    return std::abs(z) - half_ - offset_;
+  }
+  BoundingBox domain() const override {
+    BoundingBox b;
+    b.min = Vec3::Constant(-2.0);
+    b.max = Vec3::Constant(2.0);
+    return b;
+  }
+
+ private:
+  double half_, offset_, shift_;
+};
+
+/// Both faces of the slab, a grid of `spacing` over [-0.5, 0.5]^2.
+std::vector<Vec3> slab_faces(double half_thickness, double spacing) {
+  std::vector<Vec3> points;
+  const int n = int(std::lround(1.0 / spacing));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (const double z : {-half_thickness, half_thickness})
+        points.emplace_back(-0.5 + i * spacing, -0.5 + j * spacing, z);
+  return points;
+}
+
+/// A uniform T-mesh at `level` over the default domain.
+Octree uniform_tmesh(const std::vector<Vec3>& points, int level) {
+  TMeshOptions o;
+  o.max_depth = level;
+  o.min_depth = level;
+  return build_octree(points, o);
+}
+
+}  // namespace
+
+TEST_CASE("a slab thinner than a few cells is a wall: middles between its faces, a quarter of its thickness deep",
+          "[thin_walls]") {
+  const double half = 0.05;  // 0.1 thick: 1.3 cells of level 5 (side 2.5 / 32)
+  const std::vector<Vec3> points = slab_faces(half, 0.025);
+  const DataDistance data(points);
+  const Octree tmesh = uniform_tmesh(points, 5);
+  const ThinWalls walls = thin_walls(points, data, Slab(half, 0.01), tmesh);
+  REQUIRE(walls.size() == points.size());  // every point has the other face right behind it
+  for (std::size_t m = 0; m < walls.size(); ++m) {
+    CHECK(std::abs(walls.middle[m].z()) < 1e-12);
+    CHECK(walls.depth[m] == Approx(0.25 * 2.0 * half));
+  }
+}
+
+TEST_CASE("a part thicker than the search, or one face alone, has no walls", "[thin_walls]") {
+  const Octree tmesh = uniform_tmesh(slab_faces(0.05, 0.025), 5);  // leaf side 0.078: search to 0.31
+  const std::vector<Vec3> thick = slab_faces(0.25, 0.025);            // 0.5 thick
+  CHECK(thin_walls(thick, DataDistance(thick), Slab(0.25, 0.01), tmesh).empty());
+
+  std::vector<Vec3> one_face;
+  for (const Vec3& p : slab_faces(0.05, 0.025))
+    if (p.z() > 0.0) one_face.push_back(p);
+  CHECK(thin_walls(one_face, DataDistance(one_face), Slab(0.05, 0.01), tmesh).empty());
+
+  // Two faces that face the same way (a start that wraps them as one side of a thick part) are no wall.
+  const std::vector<Vec3> points = slab_faces(0.05, 0.025);
+  CHECK(thin_walls(points, DataDistance(points), Slab(0.0, 0.2, 1.0), tmesh).empty());
+}
+
+TEST_CASE("a wall's row comes only where its middle has risen above the depth", "[thin_walls]") {
+  ThinWalls walls;
+  walls.middle = {Vec3(0.0, 0.0, 0.0), Vec3(0.3, 0.0, 0.0)};
+  walls.depth = {0.02, 0.02};
+  // f = |z| - 0.03 + 0.1 x: -0.03 at the first middle (deep enough), -0.0 at the second (risen).
+  class Tilted final : public ImplicitFunction {
+   public:
+    double evaluate(const Vec3& x, Vec3* g, Mat3* h) const override {
+      if (g) *g = Vec3(0.1, 0.0, x.z() >= 0.0 ? 1.0 : -1.0);
+      if (h) h->setZero();
+      return std::abs(x.z()) - 0.03 + 0.1 * x.x();
+    }
+    BoundingBox domain() const override { return BoundingBox{Vec3::Constant(-2.0), Vec3::Constant(2.0)}; }
+  } f;
+  const WallRows rows = wall_rows(walls, f, 0.5);
+  REQUIRE(rows.position.size() == 1);
+  CHECK(rows.position[0].x() == Approx(0.3));
+  CHECK(rows.target[0] == Approx((-0.02 - 0.0) / 0.5).margin(1e-12));
+}
