@@ -232,6 +232,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
     // Least-squares rows for c'.
     part.restart();
     LeastSquaresBuilder rows(basis);
+    const int velocity_rows = int(samples.surface.size());
     {
       std::vector<Vec3> x(samples.surface.size());
       std::vector<double> target(samples.surface.size());
@@ -240,7 +241,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
         target[j] = -v[j] * samples.surface[j].gradient.norm();  // f'(x_j) = -v |grad f|
       }
       rows.add_value_rows(x, target, 1.0);
-      // Thin walls keep their inside (thin_walls.hpp): one row per wall whose middle rose above its
+      // Thin walls keep their inside (thin_walls.hpp): one row per wall point whose middle rose above its
       // depth, each weighted as one zero-set row (the kind's weight is spread over its rows). Value rows
       // like the velocity's, so the controls they touch count as at the surface for guard_signs.
       const WallRows held = wall_rows(walls, f, dt);
@@ -272,7 +273,7 @@ LevelSetResult evolve_level_set(const TSpline& initial, const std::vector<Vec3>&
       // How much of the prescribed motion the step realises: |A_v c' - b_v| / |b_v| over the
       // velocity rows (0: exactly; the distance-field and smoothness terms pull it away from 0).
       double r2 = 0.0, b2 = 0.0;
-      for (int r = 0; r < system.value_rows - record.held_walls; ++r) {
+      for (int r = 0; r < velocity_rows; ++r) {
         double a = -system.rhs[r];
         for (int e = system.row_begin[r]; e < system.row_begin[r + 1]; ++e) a += system.value[e] * update[system.column[e]];
         r2 += a * a;

@@ -13,7 +13,8 @@
 // middle w = (p + q) / 2 should stay inside by the depth t / 4 (t = |p - q|): the minimum of the
 // smoothest profile across the wall that leaves both faces with unit slope, f(s) = (s^2 - t^2 / 4) / t.
 // Where f(w) has risen above -t / 4, the step gets a row f'(w) = (-t / 4 - f(w)) / dt, weighted as one
-// zero-set row. A membrane over a through-hole has no data across it, so no wall holds it: the
+// zero-set row. The walls are looked for from every data point, so a wall sampled on both faces has a
+// middle (and a row) from each side. A membrane over a through-hole has no data across it, so no wall holds it: the
 // evolution still opens the holes the start missed.
 #pragma once
 
@@ -30,6 +31,7 @@ namespace dtsl {
 /// for: their middle lies deep enough inside without help, and the rows would never be active.
 constexpr double kMaxWallCells = 4.0;
 
+/// One entry per data point that found the other face of its wall.
 struct ThinWalls {
   std::vector<Vec3> middle;   ///< w = (p + q) / 2
   std::vector<double> depth;  ///< t / 4

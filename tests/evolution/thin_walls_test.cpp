@@ -69,19 +69,28 @@ TEST_CASE("a slab thinner than a few cells is a wall: middles between its faces,
   }
 }
 
-TEST_CASE("a part thicker than the search, or one face alone, has no walls", "[thin_walls]") {
+TEST_CASE("a part thicker than the search, or two faces facing the same way, have no walls", "[thin_walls]") {
   const Octree tmesh = uniform_tmesh(slab_faces(0.05, 0.025), 5);  // leaf side 0.078: search to 0.31
   const std::vector<Vec3> thick = slab_faces(0.25, 0.025);            // 0.5 thick
   CHECK(thin_walls(thick, DataDistance(thick), Slab(0.25, 0.01), tmesh).empty());
 
-  std::vector<Vec3> one_face;
-  for (const Vec3& p : slab_faces(0.05, 0.025))
-    if (p.z() > 0.0) one_face.push_back(p);
-  CHECK(thin_walls(one_face, DataDistance(one_face), Slab(0.05, 0.01), tmesh).empty());
-
   // Two faces that face the same way (a start that wraps them as one side of a thick part) are no wall.
   const std::vector<Vec3> points = slab_faces(0.05, 0.025);
   CHECK(thin_walls(points, DataDistance(points), Slab(0.0, 0.2, 1.0), tmesh).empty());
+}
+
+TEST_CASE("the other face must lie behind: within 45 degrees of the inward normal", "[thin_walls]") {
+  const Octree tmesh = uniform_tmesh(slab_faces(0.05, 0.025), 5);
+  const Slab slab(0.05, 0.01);
+  // p on the upper face, q on the lower one 0.1 below and 0.08 aside: 39 degrees off the inward normal.
+  const std::vector<Vec3> within = {Vec3(0.0, 0.0, 0.05), Vec3(0.08, 0.0, -0.05)};
+  const ThinWalls walls = thin_walls(within, DataDistance(within), slab, tmesh);
+  REQUIRE(walls.size() == 2);  // each finds the other
+  CHECK(walls.middle[0].isApprox(Vec3(0.04, 0.0, 0.0)));
+  CHECK(walls.depth[0] == Approx(0.25 * std::hypot(0.08, 0.1)));
+  // 0.12 aside: 50 degrees off, not behind p.
+  const std::vector<Vec3> aside = {Vec3(0.0, 0.0, 0.05), Vec3(0.12, 0.0, -0.05)};
+  CHECK(thin_walls(aside, DataDistance(aside), slab, tmesh).empty());
 }
 
 TEST_CASE("a wall's row comes only where its middle has risen above the depth", "[thin_walls]") {
