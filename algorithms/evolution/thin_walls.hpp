@@ -14,8 +14,8 @@
 // smoothest profile across the wall that leaves both faces with unit slope, f(s) = (s^2 - t^2 / 4) / t.
 // Where f(w) has risen above -t / 4, the step gets a row f'(w) = (-t / 4 - f(w)) / dt, weighted as one
 // zero-set row. The walls are looked for from every data point, so a wall sampled on both faces has a
-// middle (and a row) from each side. A membrane over a through-hole has no data across it, so no wall holds it: the
-// evolution still opens the holes the start missed.
+// middle (and a row) from each side. A membrane over a through-hole has no data across it, so no wall
+// holds it: the evolution still opens the holes the start missed.
 #pragma once
 
 #include <vector>
