@@ -8,14 +8,22 @@
 //
 // The start (carve or wrap, data_carving.hpp, data_wrap.hpp) already says where the walls are: its
 // level set wraps each face from its own side, so its gradient at a data point is that face's outward
-// normal. A wall is a pair of data points p, q whose normals face away from each other (n_p . n_q <=
-// -1/2) with q behind p (within 45 degrees of -n_p) and close (at most kMaxWallCells leaf sides). Its
-// middle w = (p + q) / 2 should stay inside by the depth t / 4 (t = |p - q|): the minimum of the
-// smoothest profile across the wall that leaves both faces with unit slope, f(s) = (s^2 - t^2 / 4) / t.
-// Where f(w) has risen above -t / 4, the step gets a row f'(w) = (-t / 4 - f(w)) / dt, weighted as one
-// zero-set row. The walls are looked for from every data point, so a wall sampled on both faces has a
-// middle (and a row) from each side. A membrane over a through-hole has no data across it, so no wall
-// holds it: the evolution still opens the holes the start missed.
+// normal. A wall is a pair of data points p, q whose normals face away from each other
+// (n_p . n_q <= -1/2), q behind p (within 45 degrees of -n_p), close (at most kMaxWallCells leaf sides)
+// and with no other face between them. Where the start spans a concave corner, a march from p can cross
+// the part, leave it through the face the start covered over (its normal points out to the start's
+// surface, sideways to the march) and cross the corner's empty space to a face beyond that does face
+// away; such a pair's row held the corner's front where the start left it, 2.5 spacings off the data
+// (the rocker arm, docs/design.md §8). So a march ends at a face it passes through (a point within half
+// a leaf of its path) that is turned sideways or the same way (0 <= n_p . n_q < 1/2; p's own face
+// curving along the march, above 1/2, does not count), and goes at most one leaf past a face turned
+// partly away (the far face with tilted normals). The middle w = (p + q) / 2 should stay inside by the
+// depth t / 4 (t = |p - q|): the minimum of the smoothest profile across the wall that leaves both
+// faces with unit slope, f(s) = (s^2 - t^2 / 4) / t. Where f(w) has risen above -t / 4, the step gets a
+// row f'(w) = (-t / 4 - f(w)) / dt, weighted as one zero-set row. The walls are looked for from every
+// data point, so a wall sampled on both faces has a middle (and a row) from each side. A membrane over
+// a through-hole has no data across it, so no wall holds it: the evolution still opens the holes the
+// start missed.
 #pragma once
 
 #include <vector>
@@ -42,7 +50,8 @@ struct ThinWalls {
 /// The walls of `points` as `start` (a level set that encloses the data, negative inside) orients them:
 /// for each point p with a non-zero gradient, the first point q met on a march along -n_p (quarter-leaf
 /// steps of `tmesh`, up to kMaxWallCells leaf sides) that lies within 45 degrees of -n_p, faces away
-/// (n_p . n_q <= -1/2) and is no farther than that. `data` is the distance to `points`. OpenMP-parallel;
+/// (n_p . n_q <= -1/2) and is no farther than that, unless the march passed through another face first
+/// (above). `data` is the distance to `points`. OpenMP-parallel;
 /// the same walls, in point order, for any thread count.
 ThinWalls thin_walls(const std::vector<Vec3>& points, const DataDistance& data, const ImplicitFunction& start,
                      const Octree& tmesh);

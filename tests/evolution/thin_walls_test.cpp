@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 
 #include "algorithms/evolution/thin_walls.hpp"
 #include "algorithms/tspline/octree.hpp"
@@ -91,6 +92,60 @@ TEST_CASE("the other face must lie behind: within 45 degrees of the inward norma
   // 0.12 aside: 50 degrees off, not behind p.
   const std::vector<Vec3> aside = {Vec3(0.0, 0.0, 0.05), Vec3(0.12, 0.0, -0.05)};
   CHECK(thin_walls(aside, DataDistance(aside), slab, tmesh).empty());
+}
+
+namespace {
+/// A start given by its normals at the data points: the gradient at x is the normal of the nearest one.
+class PointNormals final : public ImplicitFunction {
+ public:
+  PointNormals(std::vector<Vec3> points, std::vector<Vec3> normals)
+      : points_(std::move(points)), normals_(std::move(normals)) {}
+  double evaluate(const Vec3& x, Vec3* g, Mat3* h) const override {
+    std::size_t nearest = 0;
+    for (std::size_t k = 1; k < points_.size(); ++k)
+      if ((points_[k] - x).norm() < (points_[nearest] - x).norm()) nearest = k;
+    if (g) *g = normals_[nearest];
+    if (h) h->setZero();
+    return 0.0;
+  }
+  BoundingBox domain() const override { return BoundingBox{Vec3::Constant(-2.0), Vec3::Constant(2.0)}; }
+
+ private:
+  std::vector<Vec3> points_, normals_;
+};
+
+ThinWalls walls_of(const std::vector<Vec3>& points, const std::vector<Vec3>& normals) {
+  const Octree tmesh = uniform_tmesh(slab_faces(0.05, 0.025), 5);  // leaf 0.078, search to 0.31
+  return thin_walls(points, DataDistance(points), PointNormals(points, normals), tmesh);
+}
+}  // namespace
+
+TEST_CASE("a march that leaves the part through a face turned sideways finds no wall beyond it",
+          "[thin_walls]") {
+  // p faces up, q 0.3 below faces down: a wall, found from both.
+  const Vec3 p(0.0, 0.0, 0.1), r(0.0, 0.0, -0.05), q(0.0, 0.0, -0.2);
+  CHECK(walls_of({p, q}, {Vec3::UnitZ(), -Vec3::UnitZ()}).size() == 2);
+  // Between them, on the march's path, a face the start sees sideways (a concave corner the start
+  // spans), 0.15 from each: the march from either end passes through it and ends there. No wall.
+  CHECK(walls_of({p, r, q}, {Vec3::UnitZ(), Vec3::UnitX(), -Vec3::UnitZ()}).empty());
+  // The same face passed 0.05 aside (more than half a leaf of 0.078) is not on the path: the wall stays.
+  const Vec3 aside(0.05, 0.0, -0.05);
+  const ThinWalls bar = walls_of({p, aside, q}, {Vec3::UnitZ(), Vec3::UnitX(), -Vec3::UnitZ()});
+  REQUIRE(bar.size() == 2);
+  CHECK(bar.middle[0].isApprox(0.5 * (p + q)));
+}
+
+TEST_CASE("a far face with tilted normals is searched one leaf past where the march meets it",
+          "[thin_walls]") {
+  // r is met first, turned partly away (n_p . n_r = -0.4); q faces away 0.04 past it: p's wall is q.
+  const Vec3 p(0.0, 0.0, 0.05), r(0.0, 0.0, -0.05);
+  const Vec3 tilted(std::sqrt(1.0 - 0.16), 0.0, -0.4);
+  const ThinWalls near = walls_of({p, r, Vec3(0.0, 0.0, -0.09)}, {Vec3::UnitZ(), tilted, -Vec3::UnitZ()});
+  REQUIRE_FALSE(near.empty());
+  CHECK(near.middle[0].isApprox(Vec3(0.0, 0.0, -0.02)));
+  // 0.15 past it (more than the leaf of 0.078): beyond the face it passed through, no wall for p.
+  const ThinWalls far = walls_of({p, r, Vec3(0.0, 0.0, -0.2)}, {Vec3::UnitZ(), tilted, -Vec3::UnitZ()});
+  for (const Vec3& w : far.middle) CHECK_FALSE(w.isApprox(Vec3(0.0, 0.0, -0.075)));
 }
 
 TEST_CASE("a wall's row comes only where its middle has risen above the depth", "[thin_walls]") {
