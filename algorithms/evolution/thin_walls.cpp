@@ -9,7 +9,8 @@ namespace {
 
 constexpr double kCone = 0.70710678118654752;  // cos 45 degrees: q lies behind p
 constexpr double kFacingAway = -0.5;           // n_p . n_q at most this: the other face
-constexpr double kThrough = 0.5;               // a point this many leaf sides from the march is on its path
+constexpr double kThrough = 0.5;               // at most this many leaf sides from the march: on its path
+constexpr int kStepsPerLeaf = 4;               // the march's step: a quarter of the leaf at p
 constexpr double kOwnFace = 0.5;               // n_p . n_q at least this: p's own face
 
 }  // namespace
@@ -33,9 +34,11 @@ ThinWalls thin_walls(const std::vector<Vec3>& points, const DataDistance& data, 
     if (np.squaredNorm() == 0.0) continue;
     const double side = tmesh.leaf_side(tmesh.locate(p));
     const double farthest = kMaxWallCells * side;
-    double crossed = -1.0;  // where the march passed through a face that is not p's own
-    for (double t = 0.25 * side; t <= farthest; t += 0.25 * side) {
-      const NearestData nearest = data.nearest(p - t * np);
+    const double step = side / kStepsPerLeaf;
+    int crossed = -1;  // the step at which the march passed through a face turned partly away
+    for (int k = 1; k <= int(kMaxWallCells * kStepsPerLeaf); ++k) {
+      if (crossed >= 0 && k - crossed > kStepsPerLeaf) break;  // one leaf past that face, no farther
+      const NearestData nearest = data.nearest(p - (k * step) * np);
       const int q = nearest.index;
       if (q < 0 || q == int(i)) continue;
       const Vec3 v = points[std::size_t(q)] - p;
@@ -46,16 +49,15 @@ ThinWalls thin_walls(const std::vector<Vec3>& points, const DataDistance& data, 
         partner[std::size_t(i)] = q;
         break;
       }
-      // Passing through a face (q on the march's path) that is not p's own face curving along it
-      // (normals within 60 degrees of n_p): where that face is turned sideways or the same way as p's,
-      // the march has left the part through the side the start covered over, and what lies beyond is
-      // not this wall's far face. A face turned partly away may be the far face with tilted normals:
-      // the march goes on for one leaf past it, no farther.
+      // Passing through a face behind p (q on the march's path) that is not p's own face curving along
+      // it (normals within 60 degrees of n_p): where that face is turned sideways or the same way as
+      // p's (or q has no normal), the march has left the part through the side the start covered over,
+      // and what lies beyond is not this wall's far face. A face turned partly away may be the far face
+      // with tilted normals: the march goes on for one leaf past it, no farther.
       if (nearest.distance <= kThrough * side && facing < kOwnFace) {
         if (facing >= 0.0) break;
-        if (crossed < 0.0) crossed = t;
+        if (crossed < 0) crossed = k;
       }
-      if (crossed >= 0.0 && t - crossed >= side) break;
     }
   }
   ThinWalls walls;
