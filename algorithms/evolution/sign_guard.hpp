@@ -9,8 +9,7 @@
 // between the smallest and largest coefficient active at x). A control point is "at the surface" when
 // some zero-set row (a velocity, data or thin-wall row, thin_walls.hpp) touches it; every other
 // control point that a step changed may not change sign nor come closer to zero than min(floor_i, |c_i|
-// before the step), with floor_i =
-// a fraction of its cell size. Where all active coefficients keep one sign and stay away from zero, f
+// before the step), with floor_i a fraction of its cell size. Where all active coefficients keep one sign and stay away from zero, f
 // cannot vanish: the zero set can only move where it already is. Topology changes are unaffected:
 // where two fronts meet (a torus opening, a neck pinching off), the controls are at the surface.
 #pragma once

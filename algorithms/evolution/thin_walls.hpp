@@ -10,20 +10,20 @@
 // level set wraps each face from its own side, so its gradient at a data point is that face's outward
 // normal. A wall is a pair of data points p, q whose normals face away from each other
 // (n_p . n_q <= -1/2), q behind p (within 45 degrees of -n_p), close (at most kMaxWallCells leaf sides)
-// and with no other face between them. Where the start spans a concave corner, a march from p can cross
-// the part, leave it through the face the start covered over (its normal points out to the start's
-// surface, sideways to the march) and cross the corner's empty space to a face beyond that does face
-// away; such a pair's row held the corner's front where the start left it, 2.5 spacings off the data
-// (the rocker arm, docs/design.md §8). So a march ends at a face it passes through (a point within half
-// a leaf of its path) that is turned sideways or the same way (0 <= n_p . n_q < 1/2; p's own face
-// curving along the march, above 1/2, does not count), and goes at most one leaf past a face turned
-// partly away (the far face with tilted normals). The middle w = (p + q) / 2 should stay inside by the
-// depth t / 4 (t = |p - q|): the minimum of the smoothest profile across the wall that leaves both
-// faces with unit slope, f(s) = (s^2 - t^2 / 4) / t. Where f(w) has risen above -t / 4, the step gets a
-// row f'(w) = (-t / 4 - f(w)) / dt, weighted as one zero-set row. The walls are looked for from every
-// data point, so a wall sampled on both faces has a middle (and a row) from each side. A membrane over
-// a through-hole has no data across it, so no wall holds it: the evolution still opens the holes the
-// start missed.
+// and with no face turned sideways on the march between them. Where the start spans a concave corner, a
+// march from p can cross the part, leave it through the face the start covered over (its normal points
+// out to the start's surface, sideways to the march) and cross the corner's empty space to a face
+// beyond that does face away; such a pair's row held the corner's front where the start left it, 2.5
+// spacings off the data (the rocker arm, docs/design.md §8). So a march ends at a face it passes
+// through (a point within half a leaf of its path) that is turned sideways or the same way
+// (0 <= n_p . n_q < 1/2; p's own face curving along the march, above 1/2, does not count), and goes at
+// most one leaf past a face turned partly away (the far face with tilted normals). The middle w =
+// (p + q) / 2 should stay inside by the depth t / 4 (t = |p - q|): the minimum of the smoothest profile
+// across the wall that leaves both faces with unit slope, f(s) = (s^2 - t^2 / 4) / t. Where f(w) has
+// risen above -t / 4, the step gets a row f'(w) = (-t / 4 - f(w)) / dt, weighted as one zero-set row.
+// The walls are looked for from every data point, so a wall sampled on both faces has a middle (and a
+// row) from each side. A membrane over a through-hole has no data across it, so no wall holds it: the
+// evolution still opens the holes the start missed.
 #pragma once
 
 #include <vector>
