@@ -143,6 +143,9 @@ void DisplacementOptions::visit(FieldVisitor& v) {
   v.field("rim_offset", rim_offset,
           "a vertex next to a hole whose feet's weighted centroid lies farther than this x the filter width from it "
           "in the tangent plane (feet to one side: an extrapolation) joins the hole (0: off)");
+  v.field("gaps", gaps,
+          "adaptive filter, noise-free data: vertices with no data within the paper's width are fit (the wide "
+          "plane fit), fair (holes, faired) or margin (holes except within the wide fit's reach of a hole)");
 }
 
 void DisplacementOptions::check() const {
@@ -154,6 +157,7 @@ void DisplacementOptions::check() const {
   require(hole_treatments().contains(hole_fill), "hole_fill",
           "must be one of " + names_of(hole_treatments().names()) + ", got '" + hole_fill + "'");
   check_range("rim_offset", rim_offset, 0.0, 10.0);
+  require(sparse_gaps_from_name(gaps).has_value(), "gaps", "must be one of fit, fair, margin, got '" + gaps + "'");
 }
 
 DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& base, const std::vector<Vec3>& points,
@@ -171,8 +175,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   r.scale = scale ? *scale : filter->measure(points);
   Stopwatch part;
   const double edge = locator.mean_edge_length();
-  const FilterInput in{base, r.projection, normals, locator.vertex_neighbours(), edge, options.sigma_factor * edge,
-                       r.scale};
+  const FilterInput in{base,  r.projection, normals, locator.vertex_neighbours(), edge, options.sigma_factor * edge,
+                       r.scale, *sparse_gaps_from_name(options.gaps)};
   const VertexFilters filters = filter->build(in);
   const double filter_seconds = part.seconds();
   std::vector<double> d(base.vertices.size(), 0.0);

@@ -41,6 +41,12 @@ struct DisplacementOptions final : Options {
   /// side: an extrapolation) joins the hole. A straight rim of even data puts the centroid sqrt(2/pi) ~
   /// 0.8 widths away (docs/experiments.md, "Where a hole's fill starts").
   double rim_offset = 0.8;
+  /// The `adaptive` filter on noise-free data sparser than the mesh (displacement_filter.hpp, ours): the
+  /// vertices with no data within the paper's support are `fit` (the wide plane fit carries the surface
+  /// across them), `fair` (holes: the hole fill's fairing), or `margin` (holes, except within the wide
+  /// filter's reach of a hole's vertices, where the fit carries the data's surface across the hole's edge).
+  /// docs/design.md §8, "Gaps between sparse data".
+  std::string gaps = "margin";
 
   void visit(FieldVisitor& v) override;
   void check() const override;

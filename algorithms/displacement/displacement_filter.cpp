@@ -55,6 +55,9 @@ class AdaptiveFilter final : public DisplacementFilter {
     if (ladder.base_fits) width = std::max(width, s.spacing);
     ladder.widths = {width};
     ladder.noise_sigma = s.noise_sigma;
+    // The gaps between sparse data (the header; docs/design.md §8, "Gaps between sparse data").
+    if (ladder.base_fits && in.gaps != SparseGaps::fit) ladder.support_width = in.paper_width;
+    ladder.keep_hole_margins = in.gaps == SparseGaps::margin;
     if (s.noise_sigma > 0)
       while (ladder.widths.back() * kWidthRatio <= kWidestWidthEdges * in.mean_edge * (1 + 1e-9))
         ladder.widths.push_back(ladder.widths.back() * kWidthRatio);
@@ -77,6 +80,13 @@ Registry<DisplacementFilter>& displacement_filters() {
   }();
   (void)registered;
   return registry;
+}
+
+std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name) {
+  if (name == "fit") return SparseGaps::fit;
+  if (name == "fair") return SparseGaps::fair;
+  if (name == "margin") return SparseGaps::margin;
+  return std::nullopt;
 }
 
 }  // namespace dtsl

@@ -6,12 +6,17 @@
 //             linear function over the wider widths (Katkovnik's LPA-ICI); on noise-free data the base
 //             width is at least the data's median spacing and fits a plane (data sparser than the mesh
 //             ripple at the paper's width), and the paper's narrow mean then follows the creases
-//             through the fine residual passes (residual_passes.hpp).
+//             through the fine residual passes (residual_passes.hpp). Between sparse data the level
+//             set's own shape is not evidence: by default (SparseGaps::margin) a vertex with no data
+//             within the paper's support is a hole, faired from the supported ones (hole_treatment.hpp)
+//             rather than carried along by a plane fitted to data a spacing away, except within the
+//             wide filter's reach of a hole, where the fit carries the data's surface across its edge.
 #pragma once
 
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "algorithms/displacement/foot_neighbourhood.hpp"
@@ -32,6 +37,11 @@ struct DataScale {
 };
 
 /// What a filter sees: the base mesh M_0, the projection of the data onto it, and grad f's normals.
+/// What becomes of the vertices with no data within the paper's support where the `adaptive` filter fits a
+/// plane over the wider data spacing (DisplacementOptions::gaps).
+enum class SparseGaps { fit, fair, margin };
+std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name);
+
 struct FilterInput {
   const TriangleMesh& base;
   const ProjectionResult& projection;
@@ -40,6 +50,7 @@ struct FilterInput {
   double mean_edge = 0.0;                            ///< the base mesh's mean edge length
   double paper_width = 0.0;                          ///< sigma_factor x mean_edge
   const DataScale& scale;
+  SparseGaps gaps = SparseGaps::margin;
 };
 
 /// Each vertex's filter.
@@ -74,6 +85,10 @@ struct FilterLadder {
   std::vector<double> widths;  ///< increasing; more than one: ICI picks per vertex (noisy data)
   bool base_fits = false;
   double noise_sigma = 0.0;
+  /// A vertex is a hole unless the hole test passes at this width too (0: the base width's test alone).
+  double support_width = 0.0;
+  /// Unsupported vertices within the base filter's reach of a hole keep their taps (SparseGaps::margin).
+  bool keep_hole_margins = true;
 };
 /// Every vertex's taps over `ladder` (ICI where it has several widths). Throws AlgorithmError when no
 /// foot point is valid.

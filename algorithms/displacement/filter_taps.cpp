@@ -42,6 +42,13 @@ class TapBuilder {
     return true;
   }
 
+  // The support test at ladder_.support_width, narrower than the base width (whose support holds the
+  // reach): data within it, or v is a hole.
+  bool supported(const FootReach& reach) const {
+    return !(ladder_.support_width > 0 && ladder_.support_width < ladder_.widths.front()) ||
+           feet_.supported(reach, ladder_.support_width);
+  }
+
   // The ICI estimate of taps: the filtered d and its interval's half-width.
   double estimate(const FilterTaps& taps, double* deviation) const {
     double e = 0.0, l2 = 0.0;
@@ -51,7 +58,7 @@ class TapBuilder {
   }
 
   // v's base taps, then wider ones while the confidence intervals of the estimates so far intersect.
-  void build(long v, std::vector<int>& width_index) const {
+  void build(long v, std::vector<int>& width_index, std::vector<char>& unsupported) const {
     const std::vector<double>& widths = ladder_.widths;
     FilterTaps& taps = out_.taps[v];
     FootReach reach;
@@ -62,6 +69,7 @@ class TapBuilder {
       taps.clear();
       return;
     }
+    if (!supported(reach)) unsupported[v] = 1;
     out_.known[v] = 1;
     out_.degree[v] = degree;
     double dev = 0.0, e = estimate(taps, &dev);
@@ -126,6 +134,28 @@ std::vector<int> smoothed_widths(const std::vector<std::vector<int>>& neighbours
   return width_index;
 }
 
+// The unsupported vertices (taps, but no data within the support width) become holes, the gaps between
+// sparse data, except a hole's margin: those a path through unsupported vertices joins to a hole vertex
+// (no taps at all) within `reach` of it (the base filter's reach; 0: no margin). There the fit carries the data's surface on
+// across the hole's edge, which the fairing continues (a plane cut, a scan hole); farther on, the fit
+// would stand in for data that are not there.
+void drop_gaps_between_data(const std::vector<Vec3>& positions, const std::vector<std::vector<int>>& neighbours,
+                            const std::vector<char>& unsupported, double reach, VertexFilters& out) {
+  const std::size_t nv = out.known.size();
+  std::vector<int> nearest_hole(nv, -1);  // the hole vertex each margin vertex was reached from
+  std::vector<int> queue;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!out.known[v]) nearest_hole[v] = static_cast<int>(v), queue.push_back(static_cast<int>(v));
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const int hole = nearest_hole[queue[q]];
+    for (int u : neighbours[queue[q]])
+      if (unsupported[u] && nearest_hole[u] < 0 && (positions[u] - positions[hole]).norm() <= reach)
+        nearest_hole[u] = hole, queue.push_back(u);
+  }
+  for (std::size_t v = 0; v < nv; ++v)
+    if (unsupported[v] && nearest_hole[v] < 0) out.known[v] = 0, out.taps[v].clear();
+}
+
 }  // namespace
 
 VertexFilters build_vertex_filters(const FilterInput& in, const FilterLadder& ladder) {
@@ -141,8 +171,11 @@ VertexFilters build_vertex_filters(const FilterInput& in, const FilterLadder& la
   out.feet = std::make_unique<FootNeighbourhoods>(in.base, in.projection, in.normals, ladder.widths);
   const TapBuilder builder(in, ladder, out);
   std::vector<int> width_index(nv, 0);
+  std::vector<char> unsupported(nv, 0);
 #pragma omp parallel for schedule(dynamic, 256)
-  for (long v = 0; v < static_cast<long>(nv); ++v) builder.build(v, width_index);
+  for (long v = 0; v < static_cast<long>(nv); ++v) builder.build(v, width_index, unsupported);
+  const double margin_reach = ladder.keep_hole_margins ? kFilterSupport * ladder.widths.front() : 0.0;
+  drop_gaps_between_data(in.base.vertices, in.neighbours, unsupported, margin_reach, out);
   if (!out.feet->widened()) return out;
   const std::vector<int> smoothed = smoothed_widths(in.neighbours, out.known, width_index);
 #pragma omp parallel for schedule(dynamic, 256)

@@ -96,6 +96,14 @@ bool FootNeighbourhoods::gaussian_taps(const FootReach& reach, double width, Fil
   return true;
 }
 
+bool FootNeighbourhoods::supported(const FootReach& reach, double width) const {
+  const double inv2s2 = 1.0 / (2.0 * width * width), keep2 = std::pow(kFilterSupport * width, 2);
+  double wsum = 0.0;
+  for (const auto& [k, d2] : reach)
+    if (d2 <= keep2 && (wsum += std::exp(-d2 * inv2s2)) >= kMinWeight) return true;
+  return false;
+}
+
 double FootNeighbourhoods::one_sidedness(long v, const FilterTaps& taps, double width) const {
   Vec3 centroid = Vec3::Zero();
   for (const auto& [k, w] : taps) centroid += w * (projection_.foot_points[k] - base_.vertices[v]);

@@ -45,6 +45,9 @@ class FootNeighbourhoods {
   /// The feet of `reach` within kFilterSupport x `width`, Gaussian-weighted and normalised to sum 1;
   /// false where they fail the hole test (no foot, or weights summing below 0.05).
   bool gaussian_taps(const FootReach& reach, double width, FilterTaps& out) const;
+  /// The hole test alone at `width` (any width, not only the ladder's): true where the feet of `reach`
+  /// within its support weigh enough.
+  bool supported(const FootReach& reach, double width) const;
   /// The tangential offset of the taps' weighted centroid from v, / width: ~0 with feet all round,
   /// ~0.8 on a straight rim of even data (the hole rim test, hole_rim.hpp).
   double one_sidedness(long v, const FilterTaps& taps, double width) const;

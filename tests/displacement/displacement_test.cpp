@@ -303,6 +303,62 @@ TEST_CASE("data sparser than the mesh: a filter as wide as the spacing that fits
   CHECK(displace_mesh(f, base, points, sparse, &given).summary["sigma"].get<double>() == Approx(0.05));
 }
 
+TEST_CASE("data sparser than the mesh: vertices with no data within the paper's support are faired, a hole's margin "
+          "as the gaps option says",
+          "[displacement][sparse][holes]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  // ~500 points (spacing ~0.1, three of the base mesh's edges) with a cap removed around +z.
+  const double cap = 0.35;
+  std::vector<Vec3> points;
+  for (const Vec3& p : bumpy_sphere(500, 0.63, 0.02, 0.0, 4))
+    if ((p - Vec3(0, 0, 0.63)).norm() > cap) points.push_back(p);
+  const double paper = DisplacementOptions().sigma_factor * MeshLocator(base).mean_edge_length();
+  // The distance from x to the nearest datum's foot on the base (the radial projection onto the sphere).
+  const auto nearest = [&](const Vec3& x) {
+    double best = 1e9;
+    for (const Vec3& p : points) best = std::min(best, (p.normalized() * 0.6 - x).norm());
+    return best;
+  };
+  const auto from_cap = [&](const Vec3& x) { return (x.normalized() * 0.63 - Vec3(0, 0, 0.63)).norm() - cap; };
+  for (const std::string gaps : {"fit", "fair", "margin"}) {
+    DYNAMIC_SECTION("gaps: " << gaps) {
+      DisplacementOptions o;  // the default filter, on data read as noise-free
+      o.gaps = gaps;
+      const DisplacementResult r = displace_mesh(f, base, points, o);
+      REQUIRE(r.summary["base_filter_fits"].get<bool>());
+      const double wide = r.summary["sigma"].get<double>();
+      REQUIRE(wide > 2 * paper);
+      std::vector<char> hole(base.vertices.size(), 0);
+      for (int v : r.hole_vertices) hole[v] = 1;
+      std::size_t gap = 0, gap_holes = 0, margin = 0, margin_holes = 0;
+      for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+        const Vec3& x = base.vertices[v];
+        const double near = nearest(x);
+        // Data within the paper's support (a foot within 2 widths weighs enough): never a hole.
+        if (near < 2 * paper) CHECK_FALSE(hole[v]);
+        if (near <= 3.5 * paper) continue;  // out of every foot's reach at the paper's width below
+        if (from_cap(x) > 3 * wide) ++gap, gap_holes += hole[v];              // between the data
+        if (from_cap(x) < 0 && near < 1.5 * wide) ++margin, margin_holes += hole[v];  // just inside the cap
+      }
+      std::cout << "[sparse gaps] gaps " << gaps << ": " << r.hole_vertices.size() << " hole vertices of "
+                << base.vertices.size() << "; between the data " << gap_holes << " of " << gap
+                << ", inside the cap's edge " << margin_holes << " of " << margin << "\n";
+      REQUIRE(gap > 100);
+      REQUIRE(margin > 10);
+      // fit: the wide fit reaches every vertex between the data. fair and margin: none of them keeps it.
+      CHECK(gap_holes == (gaps == "fit" ? 0 : gap));
+      // margin and fit: the fit carries the data's surface across the cap's edge. fair: holes there too.
+      CHECK(margin_holes == (gaps == "fair" ? margin : 0));
+      CHECK(mesh_stats(r.mesh).watertight);
+      CHECK(r.flipped_faces.empty());
+    }
+  }
+  DisplacementOptions bad;
+  bad.gaps = "holes";
+  CHECK_THROWS_WITH(bad.check(), Catch::Contains("gaps") && Catch::Contains("holes"));
+}
+
 TEST_CASE("fine residual passes: the paper's narrow mean of what the wide fit left brings the mesh to the data",
           "[displacement][sparse][fine]") {
   // The capped ball of the test above: the wide fit rounds the crease; its residuals there are what the
