@@ -19,7 +19,9 @@ namespace dtsl {
 namespace {
 
 // The hole rim grows only holes of at least this many connected vertices: on sparse data the weight
-// test leaves gaps of a vertex or two, which have no rim. configs/ablation_rim_min_hole.yaml: 20 against
+// test leaves gaps of a vertex or two, which have no rim. The gaps between sparse data that
+// DisplacementOptions::gaps makes holes are often larger and grow rims like any hole (the rocker arm's
+// D-Map record: hole_rim_vertices 967 with `fit`, 2518 with `margin`, results/fig1_rocker_arm). configs/ablation_rim_min_hole.yaml: 20 against
 // 1 (every gap) lowered the 10k noisy armadillo sample's chamfer 3.85 -> 2.70e-3, the holed bunny's rose
 // 1.46 -> 1.59; 60 lost on both (2.89, 1.67) and the diplodocus (0.86 -> 1.03).
 constexpr int kRimMinHoleVertices = 20;
@@ -157,7 +159,9 @@ void DisplacementOptions::check() const {
   require(hole_treatments().contains(hole_fill), "hole_fill",
           "must be one of " + names_of(hole_treatments().names()) + ", got '" + hole_fill + "'");
   check_range("rim_offset", rim_offset, 0.0, 10.0);
-  require(sparse_gaps_from_name(gaps).has_value(), "gaps", "must be one of fit, fair, margin, got '" + gaps + "'");
+  require(sparse_gaps_from_name(gaps).has_value(), "gaps",
+          "must be one of " + names_of(std::vector<std::string>(std::begin(kSparseGapsNames), std::end(kSparseGapsNames))) +
+              ", got '" + gaps + "'");
 }
 
 DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& base, const std::vector<Vec3>& points,

@@ -83,9 +83,8 @@ Registry<DisplacementFilter>& displacement_filters() {
 }
 
 std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name) {
-  if (name == "fit") return SparseGaps::fit;
-  if (name == "fair") return SparseGaps::fair;
-  if (name == "margin") return SparseGaps::margin;
+  for (std::size_t i = 0; i < std::size(kSparseGapsNames); ++i)
+    if (name == kSparseGapsNames[i]) return static_cast<SparseGaps>(i);
   return std::nullopt;
 }
 

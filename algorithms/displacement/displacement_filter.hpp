@@ -36,12 +36,14 @@ struct DataScale {
   double seconds = 0.0;
 };
 
-/// What a filter sees: the base mesh M_0, the projection of the data onto it, and grad f's normals.
 /// What becomes of the vertices with no data within the paper's support where the `adaptive` filter fits a
 /// plane over the wider data spacing (DisplacementOptions::gaps).
 enum class SparseGaps { fit, fair, margin };
+/// The names DisplacementOptions::gaps accepts, in the enum's order.
+inline constexpr const char* kSparseGapsNames[] = {"fit", "fair", "margin"};
 std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name);
 
+/// What a filter sees: the base mesh M_0, the projection of the data onto it, and grad f's normals.
 struct FilterInput {
   const TriangleMesh& base;
   const ProjectionResult& projection;

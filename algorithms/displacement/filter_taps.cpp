@@ -136,24 +136,26 @@ std::vector<int> smoothed_widths(const std::vector<std::vector<int>>& neighbours
 
 // The unsupported vertices (taps, but no data within the support width) become holes, the gaps between
 // sparse data, except a hole's margin: those a path through unsupported vertices joins to a hole vertex
-// (no taps at all) within `reach` of it (the base filter's reach; 0: no margin). There the fit carries the data's surface on
-// across the hole's edge, which the fairing continues (a plane cut, a scan hole); farther on, the fit
-// would stand in for data that are not there.
+// (no taps at all) within `reach` of it (the base filter's reach; 0: no margin). There the fit carries
+// the data's surface on across the hole's edge, which the fairing continues (a plane cut, a scan hole);
+// farther on, the fit would stand in for data that are not there. One breadth-first pass from all hole
+// vertices at once: a vertex is measured from the first hole that reaches it, not always the nearest,
+// so the margin errs narrow where two holes' margins meet.
 void drop_gaps_between_data(const std::vector<Vec3>& positions, const std::vector<std::vector<int>>& neighbours,
                             const std::vector<char>& unsupported, double reach, VertexFilters& out) {
   const std::size_t nv = out.known.size();
-  std::vector<int> nearest_hole(nv, -1);  // the hole vertex each margin vertex was reached from
+  std::vector<int> reached_from(nv, -1);  // the hole vertex a margin vertex was reached from
   std::vector<int> queue;
   for (std::size_t v = 0; v < nv; ++v)
-    if (!out.known[v]) nearest_hole[v] = static_cast<int>(v), queue.push_back(static_cast<int>(v));
+    if (!out.known[v]) reached_from[v] = static_cast<int>(v), queue.push_back(static_cast<int>(v));
   for (std::size_t q = 0; q < queue.size(); ++q) {
-    const int hole = nearest_hole[queue[q]];
+    const int hole = reached_from[queue[q]];
     for (int u : neighbours[queue[q]])
-      if (unsupported[u] && nearest_hole[u] < 0 && (positions[u] - positions[hole]).norm() <= reach)
-        nearest_hole[u] = hole, queue.push_back(u);
+      if (unsupported[u] && reached_from[u] < 0 && (positions[u] - positions[hole]).norm() <= reach)
+        reached_from[u] = hole, queue.push_back(u);
   }
   for (std::size_t v = 0; v < nv; ++v)
-    if (unsupported[v] && nearest_hole[v] < 0) out.known[v] = 0, out.taps[v].clear();
+    if (unsupported[v] && reached_from[v] < 0) out.known[v] = 0, out.taps[v].clear();
 }
 
 }  // namespace
