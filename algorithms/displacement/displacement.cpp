@@ -179,7 +179,7 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   r.scale = scale ? *scale : filter->measure(points);
   Stopwatch part;
   const double edge = locator.mean_edge_length();
-  const FilterInput in{base,  r.projection, normals, locator.vertex_neighbours(), edge, options.sigma_factor * edge,
+  const FilterInput in{base,  r.projection, points, normals, locator.vertex_neighbours(), edge, options.sigma_factor * edge,
                        r.scale, *sparse_gaps_from_name(options.gaps)};
   const VertexFilters filters = filter->build(in);
   const double filter_seconds = part.seconds();

@@ -47,6 +47,7 @@ std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name);
 struct FilterInput {
   const TriangleMesh& base;
   const ProjectionResult& projection;
+  const std::vector<Vec3>& points;                   ///< the data, p_k
   const std::vector<Vec3>& normals;                  ///< per base vertex, unit
   const std::vector<std::vector<int>>& neighbours;   ///< per base vertex, its one-ring
   double mean_edge = 0.0;                            ///< the base mesh's mean edge length

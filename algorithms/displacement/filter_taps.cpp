@@ -6,6 +6,7 @@
 
 #include "algorithms/displacement/displacement_filter.hpp"
 #include "algorithms/displacement/local_regression.hpp"
+#include "algorithms/displacement/vertex_grid.hpp"
 
 namespace dtsl {
 
@@ -135,27 +136,39 @@ std::vector<int> smoothed_widths(const std::vector<std::vector<int>>& neighbours
 }
 
 // The unsupported vertices (taps, but no data within the support width) become holes, the gaps between
-// sparse data, except a hole's margin: those a path through unsupported vertices joins to a hole vertex
-// (no taps at all) within `reach` of it (the base filter's reach; 0: no margin). There the fit carries
-// the data's surface on across the hole's edge, which the fairing continues (a plane cut, a scan hole);
-// farther on, the fit would stand in for data that are not there. One breadth-first pass from all hole
-// vertices at once: a vertex is measured from the first hole that reaches it, not always the nearest,
-// so the margin errs narrow where two holes' margins meet.
-void drop_gaps_between_data(const std::vector<Vec3>& positions, const std::vector<std::vector<int>>& neighbours,
-                            const std::vector<char>& unsupported, double reach, VertexFilters& out) {
+// sparse data, except a hole's margin: those within `reach` (the base filter's reach; 0: no margin) of a
+// vertex of a hole in the data (no data point within `reach`), joined to one by a path of unsupported or
+// tapless vertices that stays within that distance. There the fit carries the data's surface on across
+// the hole's edge, which the fairing continues (a plane cut, a scan hole); farther on, the fit would
+// stand in for data that are not there. A tapless vertex with data nearby starts no margin: there the
+// level set strays from the data and their feet lie elsewhere.
+void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<Vec3>& positions,
+                            const std::vector<std::vector<int>>& neighbours, const std::vector<char>& unsupported,
+                            double reach, VertexFilters& out) {
   const std::size_t nv = out.known.size();
-  std::vector<int> reached_from(nv, -1);  // the hole vertex a margin vertex was reached from
+  std::vector<char> margin(nv, 0);
   std::vector<int> queue;
-  for (std::size_t v = 0; v < nv; ++v)
-    if (!out.known[v]) reached_from[v] = static_cast<int>(v), queue.push_back(static_cast<int>(v));
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const int hole = reached_from[queue[q]];
-    for (int u : neighbours[queue[q]])
-      if (unsupported[u] && reached_from[u] < 0 && (positions[u] - positions[hole]).norm() <= reach)
-        reached_from[u] = hole, queue.push_back(u);
+  std::vector<Vec3> hole_positions;
+  if (reach > 0) {
+    const PointGrid data(points, reach / 3);
+    for (std::size_t v = 0; v < nv; ++v) {
+      double nearest = 0.0;
+      if (!out.known[v] && data.nearest(positions[v], &nearest) >= 0 && nearest > reach) {
+        margin[v] = 1;
+        queue.push_back(static_cast<int>(v));
+        hole_positions.push_back(positions[v]);
+      }
+    }
   }
+  const PointGrid holes(hole_positions, reach > 0 ? reach / 3 : 1.0);
+  for (std::size_t q = 0; q < queue.size(); ++q)
+    for (int u : neighbours[queue[q]]) {
+      if (margin[u] || !(unsupported[u] || !out.known[u])) continue;
+      double nearest = 0.0;
+      if (holes.nearest(positions[u], &nearest) >= 0 && nearest <= reach) margin[u] = 1, queue.push_back(u);
+    }
   for (std::size_t v = 0; v < nv; ++v)
-    if (unsupported[v] && reached_from[v] < 0) out.known[v] = 0, out.taps[v].clear();
+    if (unsupported[v] && !margin[v]) out.known[v] = 0, out.taps[v].clear();
 }
 
 }  // namespace
@@ -177,7 +190,7 @@ VertexFilters build_vertex_filters(const FilterInput& in, const FilterLadder& la
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < static_cast<long>(nv); ++v) builder.build(v, width_index, unsupported);
   const double margin_reach = ladder.keep_hole_margins ? kFilterSupport * ladder.widths.front() : 0.0;
-  drop_gaps_between_data(in.base.vertices, in.neighbours, unsupported, margin_reach, out);
+  drop_gaps_between_data(in.points, in.base.vertices, in.neighbours, unsupported, margin_reach, out);
   if (!out.feet->widened()) return out;
   const std::vector<int> smoothed = smoothed_widths(in.neighbours, out.known, width_index);
 #pragma omp parallel for schedule(dynamic, 256)
