@@ -19,11 +19,12 @@ namespace dtsl {
 namespace {
 
 // The hole rim grows only holes of at least this many connected vertices: on sparse data the weight
-// test leaves gaps of a vertex or two, which have no rim. The gaps between sparse data that
-// DisplacementOptions::gaps makes holes are often larger and grow rims like any hole (the rocker arm's
-// D-Map record: hole_rim_vertices 967 with `fit`, 2518 with `margin`, results/fig1_rocker_arm). configs/ablation_rim_min_hole.yaml: 20 against
+// test leaves gaps of a vertex or two, which have no rim. configs/ablation_rim_min_hole.yaml: 20 against
 // 1 (every gap) lowered the 10k noisy armadillo sample's chamfer 3.85 -> 2.70e-3, the holed bunny's rose
-// 1.46 -> 1.59; 60 lost on both (2.89, 1.67) and the diplodocus (0.86 -> 1.03).
+// 1.46 -> 1.59; 60 lost on both (2.89, 1.67) and the diplodocus (0.86 -> 1.03). The gaps between sparse
+// data that DisplacementOptions::gaps makes holes are often larger and grow rims like any hole (the
+// rocker arm's D-Map record: hole_rim_vertices 967 with `fit`, 3081 with `margin`,
+// results/fig1_rocker_arm/{cross,gaps}).
 constexpr int kRimMinHoleVertices = 20;
 // One ring of rim vertices: configs/ablation_hole_rim.yaml, three rings raised fandisk cut's chamfer
 // 6.65 -> 7.50e-3 and the bunny's e_max of MS 12.0 -> 26.4e-3.
@@ -147,7 +148,8 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "in the tangent plane (feet to one side: an extrapolation) joins the hole (0: off)");
   v.field("gaps", gaps,
           "adaptive filter, noise-free data: vertices with no data within the paper's width are fit (the wide "
-          "plane fit), fair (holes, faired) or margin (holes except within the wide fit's reach of a hole)");
+          "plane fit), fair (holes, faired) or margin (holes except within the wide fit's reach of a hole in "
+          "the data)");
 }
 
 void DisplacementOptions::check() const {

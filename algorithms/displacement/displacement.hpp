@@ -44,7 +44,7 @@ struct DisplacementOptions final : Options {
   /// The `adaptive` filter on noise-free data sparser than the mesh (displacement_filter.hpp, ours): the
   /// vertices with no data within the paper's support are `fit` (the wide plane fit carries the surface
   /// across them), `fair` (holes: the hole fill's fairing), or `margin` (holes, except within the wide
-  /// filter's reach of a hole's vertices, where the fit carries the data's surface across the hole's edge).
+  /// filter's reach of a hole in the data, where the fit carries the data's surface across its edge).
   /// docs/design.md §8, "Gaps between sparse data".
   std::string gaps = "margin";
 
