@@ -161,9 +161,9 @@ void DisplacementOptions::check() const {
   require(hole_treatments().contains(hole_fill), "hole_fill",
           "must be one of " + names_of(hole_treatments().names()) + ", got '" + hole_fill + "'");
   check_range("rim_offset", rim_offset, 0.0, 10.0);
+  const std::vector<std::string> gaps_names(std::begin(kSparseGapsNames), std::end(kSparseGapsNames));
   require(sparse_gaps_from_name(gaps).has_value(), "gaps",
-          "must be one of " + names_of(std::vector<std::string>(std::begin(kSparseGapsNames), std::end(kSparseGapsNames))) +
-              ", got '" + gaps + "'");
+          "must be one of " + names_of(gaps_names) + ", got '" + gaps + "'");
 }
 
 DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& base, const std::vector<Vec3>& points,
@@ -181,8 +181,8 @@ DisplacementResult displace_mesh(const ImplicitFunction& f, const TriangleMesh& 
   r.scale = scale ? *scale : filter->measure(points);
   Stopwatch part;
   const double edge = locator.mean_edge_length();
-  const FilterInput in{base,  r.projection, points, normals, locator.vertex_neighbours(), edge, options.sigma_factor * edge,
-                       r.scale, *sparse_gaps_from_name(options.gaps)};
+  const FilterInput in{base, r.projection, points, normals, locator.vertex_neighbours(), edge,
+                       options.sigma_factor * edge, r.scale, *sparse_gaps_from_name(options.gaps)};
   const VertexFilters filters = filter->build(in);
   const double filter_seconds = part.seconds();
   std::vector<double> d(base.vertices.size(), 0.0);

@@ -163,7 +163,7 @@ void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<V
   const PointGrid holes(hole_positions, reach > 0 ? reach / 3 : 1.0);
   for (std::size_t q = 0; q < queue.size(); ++q)
     for (int u : neighbours[queue[q]]) {
-      if (margin[u] || !(unsupported[u] || !out.known[u])) continue;
+      if (margin[u] || (out.known[u] && !unsupported[u])) continue;  // marked, or supported data
       double nearest = 0.0;
       if (holes.nearest(positions[u], &nearest) >= 0 && nearest <= reach) margin[u] = 1, queue.push_back(u);
     }
