@@ -177,3 +177,58 @@ TEST_CASE("coarse-to-fine: a round moves f onto the refined T-mesh by the transf
   REQUIRE(refined.basis().size() > r.level_set.basis().size());
   CHECK(refined.coefficients() == transfer_level_set(r.level_set, refined.tmesh()).coefficients());
 }
+
+TEST_CASE("refine_toward_data: a leaf is split only while below its own level limit", "[evolution][fine]") {
+  const std::vector<Vec3>& points = test::torus_data();
+  EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
+  o.final_refinement = false;
+  o.max_iterations = 3;
+  const LevelSetResult r = compute_level_set(points, o);
+  const Octree& before = r.level_set.tmesh();
+  const int level = before.finest_leaf_level() + 1;
+  // The half x < 0 may go one level finer, the other half not at all.
+  const auto west_only = [level](const Octree& tree, int leaf) { return tree.leaf_box(leaf).max.x() <= 0.0 ? level : 0; };
+  const TSpline refined = refine_toward_data(r.level_set, points, west_only, CoarseToFineOptions());
+  REQUIRE(refined.basis().size() > r.level_set.basis().size());
+  const Octree& after = refined.tmesh();
+  int west_split = 0;
+  for (const Vec3& p : points) {
+    const int old_level = before.leaf(before.locate(p)).level, new_level = after.leaf(after.locate(p)).level;
+    CHECK(new_level <= std::max(old_level, level));
+    if (p.x() < -before.leaf_side(before.locate(p)) && new_level > old_level) ++west_split;
+  }
+  CHECK(west_split > 0);
+  // East of x = 0, only the 2:1 balance may split a leaf, and only next to a split one.
+  for (const Vec3& p : points)
+    if (p.x() > 2.0 * before.leaf_side(before.locate(p))) CHECK(after.leaf(after.locate(p)).level == before.leaf(before.locate(p)).level);
+}
+
+TEST_CASE("carve start: sparse data are refined under their own leaves though a dense cluster reaches max_depth",
+          "[evolution][fine][carve]") {
+  // A sphere sampled sparsely (its local spacing below the finest cell), plus a dense patch that alone
+  // puts one octree leaf at max_depth.
+  std::vector<Vec3> points = test::sphere_data(5000);
+  // The patch's centre lies inside one octree cell of level 4 (side 2.5 / 16), away from its faces.
+  const Vec3 centre = 0.8 * Vec3(0.5786, 0.3906, 0.3906).normalized();
+  for (const Vec3& p : test::sphere_data(250000))
+    if ((p - centre).norm() < 0.04) points.push_back(p);
+  EvolutionOptions o = test::test_options("distance_balloon", "eigen_cg", 5);
+  o.tmesh.points_per_cell = 64;
+  o.initial = "carve";
+  o.final_refinement = false;
+  o.max_iterations = 2;
+  const Octree start = build_octree(points, o.tmesh);
+  REQUIRE(start.finest_leaf_level() == o.tmesh.max_depth);
+  const LevelSetResult r = compute_level_set(points, o);
+  const Octree& tree = r.level_set.tmesh();
+  std::size_t coarse = 0, two_levels_under = 0;
+  for (const Vec3& p : points) {
+    const int under = start.leaf(start.locate(p)).level;
+    coarse += tree.leaf(tree.locate(p)).level < std::min(o.tmesh.max_depth, under + 2);
+    two_levels_under += under + 2 <= o.tmesh.max_depth;
+  }
+  REQUIRE(two_levels_under > points.size() / 2);  // most of the sphere lies in leaves two levels up
+  // A leaf is split when it holds a few points or the zero set crosses it near the data, which misses a
+  // point here and there in a leaf's corner; under the octree's finest leaf alone, none would be split.
+  CHECK(coarse < points.size() / 20);
+}
