@@ -10,28 +10,21 @@ namespace dtsl {
 
 TSpline refine_toward_data(const TSpline& f, const std::vector<Vec3>& points, int level,
                            const CoarseToFineOptions& options) {
-  return refine_toward_data(f, points, [level](const Octree&, int) { return level; }, options);
-}
-
-TSpline refine_toward_data(const TSpline& f, const std::vector<Vec3>& points, const LeafLevelLimit& level_limit,
-                           const CoarseToFineOptions& options) {
   options.check();
   const Octree& tree = f.tmesh();
-  const auto below_limit = [&](int leaf) {
-    return tree.leaf(leaf).level < std::min(level_limit(tree, leaf), tree.max_depth());
-  };
+  level = std::min(level, tree.max_depth());
   std::vector<int> count(tree.leaf_count(), 0);
   for (const Vec3& p : points) ++count[tree.locate(p)];
   std::vector<int> split;
   for (int l = 0; l < tree.leaf_count(); ++l)
-    if (count[l] >= options.points_per_cell && below_limit(l)) split.push_back(l);
+    if (tree.leaf(l).level < level && count[l] >= options.points_per_cell) split.push_back(l);
   if (options.data_reach > 0.0) {
     const DataDistance data(points);
     ZeroSetSampling sampling;
     sampling.hessians = false;
     const ZeroSetSamples samples = sample_zero_set(f, tree, sampling);
     for (const SurfacePoint& s : samples.surface) {
-      if (!below_limit(s.leaf)) continue;
+      if (tree.leaf(s.leaf).level >= level) continue;
       if (data.nearest(s.position).distance <= options.data_reach * s.cell_size) split.push_back(s.leaf);
     }
   }

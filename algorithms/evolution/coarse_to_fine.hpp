@@ -8,7 +8,6 @@
 // later rounds start close to the data and need few steps.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,13 +51,6 @@ struct CoarseToFineOptions final : Options {
 /// the zero set crosses within options.data_reach leaf sides of a point, split once (rebalanced), and
 /// f moved onto the result. Returns f itself when nothing is to be split.
 TSpline refine_toward_data(const TSpline& f, const std::vector<Vec3>& points, int level,
-                           const CoarseToFineOptions& options);
-
-/// The finest level a leaf (leaf number of the octree given) may be split to.
-using LeafLevelLimit = std::function<int(const Octree& tree, int leaf)>;
-
-/// As above with a level of each leaf's own: a leaf is split only while below level_limit(tree, leaf).
-TSpline refine_toward_data(const TSpline& f, const std::vector<Vec3>& points, const LeafLevelLimit& level_limit,
                            const CoarseToFineOptions& options);
 
 }  // namespace dtsl

@@ -342,12 +342,8 @@ std::vector<Vec3> level_set_data(const std::vector<Vec3>& points, const Evolutio
 
 namespace {
 // With a carve or wrap start, the T-mesh is refined toward the data while its cells stay at least this
-// many median data spacings wide,
+// many median data spacings wide.
 constexpr double kFinestCellSpacings = 0.5;
-// each leaf near the data this many levels under its leaf of the data-adaptive octree,
-constexpr int kPreRefinementLevels = 2;
-// and past the octree's finest leaf only while its cells stay this many local spacings wide.
-constexpr double kFinestCellLocalSpacings = 1.0;
 }  // namespace
 
 LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const EvolutionOptions& options) {
@@ -417,31 +413,15 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
     }
     TSpline f = initial_level_set(basis, points, distance);
-    // Pre-refinement (docs/design.md §8): each leaf near the data is split kPreRefinementLevels levels under
-    // its own leaf of the data-adaptive octree, to max_depth at most and never to cells narrower than half
-    // the data's median spacing (they would have no data of their own to fit). The levels that bring the
-    // octree's finest leaf to max_depth are split wherever the data are; the levels past those only where
-    // the cell stays kFinestCellLocalSpacings local spacings of the nearest data wide. The octree's finest
-    // leaf alone would leave the sparse rest coarse wherever a dense cluster reaches max_depth (the limbs
-    // of a figure grow webs), and a cell narrower than the local spacing lets the level set dimple between
-    // the points of a sparse part.
+    // One split per level from the octree's finest leaf to max_depth, near the data: where the octree
+    // already reached max_depth somewhere, nothing is split. Splitting every leaf near the data down to
+    // max_depth instead cost 2.1x the dev half's time for one input's topology (docs/design.md §8).
+    // Cells finer than half the data's spacing would have no data of their own to fit.
     const double spacing = initial_summary.at("spacing").get<double>();
-    int finest = options.tmesh.max_depth;
-    while (finest > 0 && f.tmesh().side() / double(1 << finest) < kFinestCellSpacings * spacing) --finest;
-    const Octree start = f.tmesh();
-    const DataDistance data(points);
-    const int global_levels = options.tmesh.max_depth - start.finest_leaf_level();
-    const LeafLevelLimit limit = [&](const Octree& tree, int leaf) {
-      const BoundingBox box = tree.leaf_box(leaf);
-      const Vec3 centre = 0.5 * (box.min + box.max);
-      const int under = start.leaf(start.locate(centre)).level;
-      const double local = local_spacing[std::size_t(data.nearest(centre).index)];
-      int level = std::min(finest, under + kPreRefinementLevels);
-      while (level > under + global_levels && tree.side() / double(1 << level) < kFinestCellLocalSpacings * local) --level;
-      return std::min(level, finest);
-    };
-    for (int pass = 0; pass < kPreRefinementLevels; ++pass) {
-      TSpline refined = refine_toward_data(f, points, limit, options.fine);
+    const auto cell_side = [&f](int level) { return f.tmesh().side() / double(1 << level); };
+    for (int level = f.tmesh().finest_leaf_level() + 1;
+         level <= options.tmesh.max_depth && cell_side(level) >= kFinestCellSpacings * spacing; ++level) {
+      TSpline refined = refine_toward_data(f, points, level, options.fine);
       if (refined.shared_basis() == f.shared_basis()) break;
       f = initial_level_set(refined.shared_basis(), points, distance);
     }
