@@ -185,7 +185,7 @@ BilateralEvolutionResult bilateral_evolution(const TriangleMesh& mesh, const std
         break;
       }
     }
-    std::vector<FootPoint> next_feet = foot_points(next, points, o.snap);
+    std::vector<FootPoint> next_feet = update_foot_points(cur, next, adj.vertex_faces, feet, points, o.snap);
     const double e = mean_distance(next_feet);
     history.push_back(e);
     // Slow steps can be a pause, not the end: on fandisk the corners go on converging after one (e_max

@@ -6,6 +6,7 @@
 #include "algorithms/sharpen/bilateral_target.hpp"
 #include "algorithms/sharpen/degenerate_removal.hpp"
 #include "algorithms/sharpen/foot_points.hpp"
+#include "framework/core/error.hpp"
 #include "framework/core/mesh_adjacency.hpp"
 #include "algorithms/sharpen/sharpen_solver.hpp"
 #include "framework/metrics/metrics.hpp"
@@ -165,4 +166,35 @@ TEST_CASE("degenerate removal collapses short edges and keeps the mesh closed", 
   CHECK(rep.face_origin.size() == m.faces.size());
   // The surface stays where it was.
   CHECK(compare_surfaces(m, start, 20000, 0.005, 1).hausdorff < 0.02);
+}
+
+TEST_CASE("foot points updated after some vertices moved equal those found anew", "[sharpen][foot]") {
+  const TriangleMesh before = sharpen_test::block_truth();
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> offset(0.0, 0.02);
+  std::vector<Vec3> points = sharpen_test::block_points(before, 3000, 3);
+  for (Vec3& p : points) p += Vec3(offset(rng), offset(rng), offset(rng));
+  const std::vector<FootPoint> feet = foot_points(before, points, 1e-6);
+  const MeshAdjacency adj = mesh_adjacency(before);
+  for (const std::size_t stride : {std::size_t(1), std::size_t(7), before.vertices.size()}) {
+    TriangleMesh after = before;  // every stride-th vertex moved (stride = size: one vertex)
+    for (std::size_t v = 0; v < after.vertices.size(); v += stride) after.vertices[v] += 2.0 * Vec3(offset(rng), offset(rng), offset(rng));
+    const std::vector<FootPoint> updated = update_foot_points(before, after, adj.vertex_faces, feet, points, 1e-6);
+    const std::vector<FootPoint> anew = foot_points(after, points, 1e-6);
+    REQUIRE(updated.size() == anew.size());
+    std::size_t changed = 0, differ = 0;
+    for (std::size_t k = 0; k < anew.size(); ++k) {
+      changed += feet[k].distance != anew[k].distance;
+      differ += std::abs(updated[k].distance - anew[k].distance) > 1e-12 || (updated[k].q - anew[k].q).norm() > 1e-9;
+    }
+    INFO("stride " << stride);
+    CHECK(changed > 0);  // the move matters to some points
+    CHECK(differ == 0);
+  }
+  // Unmoved: the same feet. Different faces or sizes: an error.
+  CHECK(update_foot_points(before, before, adj.vertex_faces, feet, points, 1e-6).size() == feet.size());
+  TriangleMesh other = before;
+  std::swap(other.faces[0][0], other.faces[0][1]);
+  CHECK_THROWS_AS(update_foot_points(before, other, adj.vertex_faces, feet, points, 1e-6), AlgorithmError);
+  CHECK_THROWS_AS(update_foot_points(before, before, adj.vertex_faces, feet, {}, 1e-6), AlgorithmError);
 }
