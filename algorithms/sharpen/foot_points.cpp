@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
@@ -49,54 +50,66 @@ FootPoint foot_at(const TriangleMesh& mesh, const Vec3& q, double distance, int 
   return f;
 }
 
-// The cells of a uniform grid that the boxes of some faces, grown by `reach`, overlap: a point in no
-// marked cell is farther than `reach` from every one of those faces.
-class MovedFaceCells {
+// The cells of a uniform grid that some boxes overlap: a point in no marked cell lies in none of them.
+class BoxCells {
  public:
-  MovedFaceCells(const TriangleMesh& mesh, const std::vector<int>& faces, double reach) {
+  explicit BoxCells(const std::vector<BoundingBox>& boxes) {
     double extent = 0.0;
-    for (const int f : faces) {
-      const Face& t = mesh.faces[std::size_t(f)];
-      BoundingBox b;
-      for (const int v : t) b.extend(mesh.vertices[std::size_t(v)]), box_.extend(mesh.vertices[std::size_t(v)]);
-      extent += (b.max - b.min).maxCoeff();
-    }
-    box_.min.array() -= reach;
-    box_.max.array() += reach;
-    // Cells about a face wide, and no more than kMaxCells of them.
-    cell_ = std::max(extent / double(faces.size()) + 2.0 * reach, 1e-12);
-    const double volume = (box_.max - box_.min).prod();
-    cell_ = std::max(cell_, std::cbrt(volume / kMaxCells));
-    for (int a = 0; a < 3; ++a) dims_[a] = 1 + long((box_.max[a] - box_.min[a]) / cell_);
+    for (const BoundingBox& b : boxes) box_.extend(b.min), box_.extend(b.max), extent += (b.max - b.min).maxCoeff();
+    // Cells about a box wide, and no more than kMaxCells of them.
+    cell_ = std::max(extent / double(std::max<std::size_t>(boxes.size(), 1)), 1e-12);
+    if (!boxes.empty()) cell_ = std::max(cell_, std::cbrt((box_.max - box_.min).prod() / kMaxCells));
+    for (int a = 0; a < 3; ++a) dims_[a] = boxes.empty() ? 1 : 1 + long((box_.max[a] - box_.min[a]) / cell_);
     marked_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]), false);
-    for (const int f : faces) {
-      const Face& t = mesh.faces[std::size_t(f)];
-      BoundingBox b;
-      for (const int v : t) b.extend(mesh.vertices[std::size_t(v)]);
-      const std::array<long, 3> lo = index(b.min.array() - reach), hi = index(b.max.array() + reach);
-      for (long x = lo[0]; x <= hi[0]; ++x)
-        for (long y = lo[1]; y <= hi[1]; ++y)
-          for (long z = lo[2]; z <= hi[2]; ++z) marked_[std::size_t((x * dims_[1] + y) * dims_[2] + z)] = true;
-    }
+    for (const BoundingBox& b : boxes) visit(b, [this](std::size_t c) { marked_[c] = true; return false; });
   }
-  bool contains(const Vec3& p) const {
-    if ((p.array() < box_.min.array()).any() || (p.array() > box_.max.array()).any()) return false;
-    const std::array<long, 3> i = index(p.array());
-    return marked_[std::size_t((i[0] * dims_[1] + i[1]) * dims_[2] + i[2])];
+  bool contains(const Vec3& p) const { return overlaps(BoundingBox{p, p}); }
+  bool overlaps(const BoundingBox& b) const {
+    if (!box_.valid() || (b.max.array() < box_.min.array()).any() || (b.min.array() > box_.max.array()).any())
+      return false;
+    return visit(b, [this](std::size_t c) { return bool(marked_[c]); });
   }
 
  private:
   static constexpr double kMaxCells = 64.0 * 1024 * 1024;
-  std::array<long, 3> index(const Eigen::Array3d& p) const {
-    std::array<long, 3> i{};
-    for (int a = 0; a < 3; ++a) i[a] = std::clamp(long((p[a] - box_.min[a]) / cell_), 0L, dims_[a] - 1);
-    return i;
+  long index(int axis, double x) const { return std::clamp(long((x - box_.min[axis]) / cell_), 0L, dims_[axis] - 1); }
+  // Calls f on the cells b overlaps until it returns true; whether it did.
+  template <class F>
+  bool visit(const BoundingBox& b, F f) const {
+    for (long x = index(0, b.min.x()); x <= index(0, b.max.x()); ++x)
+      for (long y = index(1, b.min.y()); y <= index(1, b.max.y()); ++y)
+        for (long z = index(2, b.min.z()); z <= index(2, b.max.z()); ++z)
+          if (f(std::size_t((x * dims_[1] + y) * dims_[2] + z))) return true;
+    return false;
   }
   BoundingBox box_;
   double cell_ = 1.0;
   long dims_[3] = {1, 1, 1};
   std::vector<bool> marked_;
 };
+
+BoundingBox face_box(const TriangleMesh& mesh, int face, double grow) {
+  BoundingBox b;
+  for (const int v : mesh.faces[std::size_t(face)]) b.extend(mesh.vertices[std::size_t(v)]);
+  b.min.array() -= grow;
+  b.max.array() += grow;
+  return b;
+}
+
+// The faces of `mesh` listed, as a mesh of their own for MeshDistance (nothing if none has an area: it
+// leaves zero-area faces out and rejects a mesh of only those).
+std::optional<TriangleMesh> face_subset(const TriangleMesh& mesh, const std::vector<int>& faces) {
+  TriangleMesh part;
+  part.vertices = mesh.vertices;
+  bool area = false;
+  for (const int f : faces) {
+    const Face& t = mesh.faces[std::size_t(f)];
+    part.faces.push_back(t);
+    area = area || (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).squaredNorm() > 0.0;
+  }
+  if (!area) return std::nullopt;
+  return part;
+}
 
 std::vector<Vec3> select(const std::vector<Vec3>& points, const std::vector<std::size_t>& which) {
   std::vector<Vec3> out;
@@ -132,31 +145,50 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   std::sort(changed_faces.begin(), changed_faces.end());
 
   // A point whose foot lies on an unchanged face keeps it unless a moved face came closer, which needs the
-  // point within its foot's distance (at most `reach`) of that face's box; the others are searched on the
-  // whole mesh again.
+  // point within its foot's distance (at most `reach`) of that face's box.
   double reach = 0.0;
   for (const FootPoint& f : feet) reach = std::max(reach, f.distance);
-  const MovedFaceCells near(after, changed_faces, reach);
+  std::vector<BoundingBox> moved_boxes;
+  for (const int f : changed_faces) moved_boxes.push_back(face_box(after, f, reach));
+  const BoxCells near_moved(moved_boxes);
   std::vector<std::size_t> kept, lost;
   for (std::size_t k = 0; k < feet.size(); ++k) {
     if (changed[std::size_t(feet[k].face)]) lost.push_back(k);
-    else if (near.contains(points[k])) kept.push_back(k);
+    else if (near_moved.contains(points[k])) kept.push_back(k);
   }
   std::vector<FootPoint> out = feet;
-  TriangleMesh moved;
-  moved.vertices = after.vertices;
-  for (const int f : changed_faces) moved.faces.push_back(after.faces[std::size_t(f)]);
-  if (std::any_of(moved.faces.begin(), moved.faces.end(), [&](const Face& t) {  // MeshDistance skips zero-area faces
-        return (after.vertices[t[1]] - after.vertices[t[0]]).cross(after.vertices[t[2]] - after.vertices[t[0]]).squaredNorm() > 0.0;
-      })) {
-    const std::vector<MeshDistance::Hit> hits = MeshDistance(moved).closest_all(select(points, kept));
-    for (std::size_t i = 0; i < kept.size(); ++i)
-      if (hits[i].distance < feet[kept[i]].distance)
-        out[kept[i]] = foot_at(after, hits[i].point, hits[i].distance, changed_faces[std::size_t(hits[i].face)], snap);
+  const std::optional<TriangleMesh> moved = face_subset(after, changed_faces);
+  if (!moved) return foot_points(after, points, snap);  // every moved face lost its area: search anew
+  const MeshDistance moved_faces(*moved);
+  const auto hits = moved_faces.closest_all(select(points, kept));
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    if (hits[i].distance < feet[kept[i]].distance)
+      out[kept[i]] = foot_at(after, hits[i].point, hits[i].distance, changed_faces[std::size_t(hits[i].face)], snap);
+  if (lost.empty()) return out;
+  // A point whose foot's face moved: its nearest moved face bounds the search; the unchanged faces
+  // within that bound of some such point are searched as well.
+  const std::vector<Vec3> lost_points = select(points, lost);
+  const auto on_moved = moved_faces.closest_all(lost_points);
+  std::vector<BoundingBox> lost_boxes;
+  for (std::size_t i = 0; i < lost.size(); ++i) {
+    BoundingBox b{lost_points[i], lost_points[i]};
+    b.min.array() -= on_moved[i].distance;
+    b.max.array() += on_moved[i].distance;
+    lost_boxes.push_back(b);
   }
-  if (!lost.empty()) {
-    const std::vector<MeshDistance::Hit> hits = MeshDistance(after).closest_all(select(points, lost));
-    for (std::size_t i = 0; i < lost.size(); ++i) out[lost[i]] = foot_at(after, hits[i].point, hits[i].distance, hits[i].face, snap);
+  const BoxCells near_lost(lost_boxes);
+  std::vector<int> unchanged_near;
+  for (std::size_t f = 0; f < after.faces.size(); ++f)
+    if (!changed[f] && near_lost.overlaps(face_box(after, int(f), 0.0))) unchanged_near.push_back(int(f));
+  const std::optional<TriangleMesh> around = face_subset(after, unchanged_near);
+  std::vector<MeshDistance::Hit> on_unchanged;
+  if (around) on_unchanged = MeshDistance(*around).closest_all(lost_points);
+  for (std::size_t i = 0; i < lost.size(); ++i) {
+    if (around && on_unchanged[i].distance < on_moved[i].distance)
+      out[lost[i]] = foot_at(after, on_unchanged[i].point, on_unchanged[i].distance,
+                             unchanged_near[std::size_t(on_unchanged[i].face)], snap);
+    else
+      out[lost[i]] = foot_at(after, on_moved[i].point, on_moved[i].distance, changed_faces[std::size_t(on_moved[i].face)], snap);
   }
   return out;
 }
