@@ -56,10 +56,16 @@ class BoxCells {
   explicit BoxCells(const std::vector<BoundingBox>& boxes) {
     double extent = 0.0;
     for (const BoundingBox& b : boxes) box_.extend(b.min), box_.extend(b.max), extent += (b.max - b.min).maxCoeff();
-    // Cells about a box wide, and no more than kMaxCells of them.
-    cell_ = std::max(extent / double(std::max<std::size_t>(boxes.size(), 1)), 1e-12);
-    if (!boxes.empty()) cell_ = std::max(cell_, std::cbrt((box_.max - box_.min).prod() / kMaxCells));
-    for (int a = 0; a < 3; ++a) dims_[a] = boxes.empty() ? 1 : 1 + long((box_.max[a] - box_.min[a]) / cell_);
+    if (boxes.empty()) {
+      marked_.assign(1, false);
+      return;
+    }
+    // Cells about a box wide, no narrower than a millionth of the whole, and no more than kMaxCells.
+    const Vec3 size = box_.max - box_.min;
+    cell_ = std::max({extent / double(boxes.size()), 1e-6 * size.norm(), 1e-300});
+    const auto cells = [&](double c) { return (1.0 + size.x() / c) * (1.0 + size.y() / c) * (1.0 + size.z() / c); };
+    while (cells(cell_) > kMaxCells) cell_ *= 1.25;
+    for (int a = 0; a < 3; ++a) dims_[a] = 1 + long(size[a] / cell_);
     marked_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]), false);
     for (const BoundingBox& b : boxes) visit(b, [this](std::size_t c) { marked_[c] = true; return false; });
   }
@@ -72,7 +78,9 @@ class BoxCells {
 
  private:
   static constexpr double kMaxCells = 64.0 * 1024 * 1024;
-  long index(int axis, double x) const { return std::clamp(long((x - box_.min[axis]) / cell_), 0L, dims_[axis] - 1); }
+  long index(int axis, double x) const {
+    return long(std::clamp((x - box_.min[axis]) / cell_, 0.0, double(dims_[axis] - 1)));
+  }
   // Calls f on the cells b overlaps until it returns true; whether it did.
   template <class F>
   bool visit(const BoundingBox& b, F f) const {
@@ -88,12 +96,19 @@ class BoxCells {
   std::vector<bool> marked_;
 };
 
+// The box of b grown by `grow`, and by a few rounding errors of its coordinates more (a face at exactly
+// that distance must not be left out by rounding).
+BoundingBox grown(BoundingBox b, double grow) {
+  const double pad = grow * (1.0 + 1e-12) + 1e-12 * std::max(b.min.cwiseAbs().maxCoeff(), b.max.cwiseAbs().maxCoeff());
+  b.min.array() -= pad;
+  b.max.array() += pad;
+  return b;
+}
+
 BoundingBox face_box(const TriangleMesh& mesh, int face, double grow) {
   BoundingBox b;
   for (const int v : mesh.faces[std::size_t(face)]) b.extend(mesh.vertices[std::size_t(v)]);
-  b.min.array() -= grow;
-  b.max.array() += grow;
-  return b;
+  return grown(b, grow);
 }
 
 // The faces of `mesh` listed, as a mesh of their own for MeshDistance (nothing if none has an area: it
@@ -135,6 +150,9 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   if (after.faces != before.faces || after.vertices.size() != before.vertices.size() ||
       vertex_faces.size() != after.vertices.size() || feet.size() != points.size())
     throw AlgorithmError("foot point update: the meshes must share their faces, and feet match the points");
+  for (const FootPoint& f : feet)
+    if (f.face < 0 || std::size_t(f.face) >= after.faces.size())
+      throw AlgorithmError("foot point update: a foot's face " + std::to_string(f.face) + " is not a face of the mesh");
   std::vector<char> changed(after.faces.size(), 0);
   std::vector<int> changed_faces;
   for (std::size_t v = 0; v < after.vertices.size(); ++v)
@@ -170,12 +188,8 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   const std::vector<Vec3> lost_points = select(points, lost);
   const auto on_moved = moved_faces.closest_all(lost_points);
   std::vector<BoundingBox> lost_boxes;
-  for (std::size_t i = 0; i < lost.size(); ++i) {
-    BoundingBox b{lost_points[i], lost_points[i]};
-    b.min.array() -= on_moved[i].distance;
-    b.max.array() += on_moved[i].distance;
-    lost_boxes.push_back(b);
-  }
+  for (std::size_t i = 0; i < lost.size(); ++i)
+    lost_boxes.push_back(grown(BoundingBox{lost_points[i], lost_points[i]}, on_moved[i].distance));
   const BoxCells near_lost(lost_boxes);
   std::vector<int> unchanged_near;
   for (std::size_t f = 0; f < after.faces.size(); ++f)

@@ -182,14 +182,24 @@ TEST_CASE("foot points updated after some vertices moved equal those found anew"
     const std::vector<FootPoint> updated = update_foot_points(before, after, adj.vertex_faces, feet, points, 1e-6);
     const std::vector<FootPoint> anew = foot_points(after, points, 1e-6);
     REQUIRE(updated.size() == anew.size());
-    std::size_t changed = 0, differ = 0;
+    std::size_t changed = 0, differ = 0, misplaced = 0;
     for (std::size_t k = 0; k < anew.size(); ++k) {
       changed += feet[k].distance != anew[k].distance;
       differ += std::abs(updated[k].distance - anew[k].distance) > 1e-12 || (updated[k].q - anew[k].q).norm() > 1e-9;
+      // The foot's face and weights are those of the moved mesh: they give back q, on that face.
+      const FootPoint& f = updated[k];
+      Vec3 q = Vec3::Zero();
+      for (int c = 0; c < f.count; ++c) {
+        q += f.lambda[c] * after.vertices[f.vertices[c]];
+        const Face& t = after.faces[f.face];
+        misplaced += std::find(t.begin(), t.end(), f.vertices[c]) == t.end();
+      }
+      misplaced += (q - f.q).norm() > 1e-5;
     }
     INFO("stride " << stride);
     CHECK(changed > 0);  // the move matters to some points
     CHECK(differ == 0);
+    CHECK(misplaced == 0);
   }
   // Unmoved: the same feet. Different faces or sizes: an error.
   CHECK(update_foot_points(before, before, adj.vertex_faces, feet, points, 1e-6).size() == feet.size());
@@ -197,4 +207,21 @@ TEST_CASE("foot points updated after some vertices moved equal those found anew"
   std::swap(other.faces[0][0], other.faces[0][1]);
   CHECK_THROWS_AS(update_foot_points(before, other, adj.vertex_faces, feet, points, 1e-6), AlgorithmError);
   CHECK_THROWS_AS(update_foot_points(before, before, adj.vertex_faces, feet, {}, 1e-6), AlgorithmError);
+  std::vector<FootPoint> stray = feet;
+  stray[0].face = int(before.faces.size());
+  CHECK_THROWS_AS(update_foot_points(before, before, adj.vertex_faces, stray, points, 1e-6), AlgorithmError);
+}
+
+TEST_CASE("foot points updated on a flat mesh with the data on it (boxes of no volume)", "[sharpen][foot]") {
+  const TriangleMesh before = square();
+  std::vector<Vec3> points;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j) points.emplace_back(0.1 * i, 0.1 * j, 0.0);
+  const std::vector<FootPoint> feet = foot_points(before, points, 1e-6);
+  TriangleMesh after = before;
+  after.vertices[2] = Vec3(0.9, 1.1, 0.0);  // moved within the plane: every foot distance stays 0 or grows
+  const std::vector<FootPoint> updated =
+      update_foot_points(before, after, mesh_adjacency(before).vertex_faces, feet, points, 1e-6);
+  const std::vector<FootPoint> anew = foot_points(after, points, 1e-6);
+  for (std::size_t k = 0; k < points.size(); ++k) CHECK(updated[k].distance == Approx(anew[k].distance).margin(1e-12));
 }
