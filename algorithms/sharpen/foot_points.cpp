@@ -120,7 +120,8 @@ std::optional<TriangleMesh> face_subset(const TriangleMesh& mesh, const std::vec
   for (const int f : faces) {
     const Face& t = mesh.faces[std::size_t(f)];
     part.faces.push_back(t);
-    area = area || (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).squaredNorm() > 0.0;
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    area = area || (b - a).cross(c - a).squaredNorm() > 0.0;
   }
   if (!area) return std::nullopt;
   return part;
@@ -139,7 +140,8 @@ std::vector<FootPoint> foot_points(const TriangleMesh& mesh, const std::vector<V
   const MeshDistance tree(mesh);
   const std::vector<MeshDistance::Hit> hits = tree.closest_all(points);
   std::vector<FootPoint> feet(points.size());
-  for (std::size_t k = 0; k < points.size(); ++k) feet[k] = foot_at(mesh, hits[k].point, hits[k].distance, hits[k].face, snap);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    feet[k] = foot_at(mesh, hits[k].point, hits[k].distance, hits[k].face, snap);
   return feet;
 }
 
@@ -202,7 +204,8 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
       out[lost[i]] = foot_at(after, on_unchanged[i].point, on_unchanged[i].distance,
                              unchanged_near[std::size_t(on_unchanged[i].face)], snap);
     else
-      out[lost[i]] = foot_at(after, on_moved[i].point, on_moved[i].distance, changed_faces[std::size_t(on_moved[i].face)], snap);
+      out[lost[i]] = foot_at(after, on_moved[i].point, on_moved[i].distance,
+                             changed_faces[std::size_t(on_moved[i].face)], snap);
   }
   return out;
 }

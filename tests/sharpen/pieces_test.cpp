@@ -178,7 +178,8 @@ TEST_CASE("foot points updated after some vertices moved equal those found anew"
   const MeshAdjacency adj = mesh_adjacency(before);
   for (const std::size_t stride : {std::size_t(1), std::size_t(7), before.vertices.size()}) {
     TriangleMesh after = before;  // every stride-th vertex moved (stride = size: one vertex)
-    for (std::size_t v = 0; v < after.vertices.size(); v += stride) after.vertices[v] += 2.0 * Vec3(offset(rng), offset(rng), offset(rng));
+    for (std::size_t v = 0; v < after.vertices.size(); v += stride)
+      after.vertices[v] += 2.0 * Vec3(offset(rng), offset(rng), offset(rng));
     const std::vector<FootPoint> updated = update_foot_points(before, after, adj.vertex_faces, feet, points, 1e-6);
     const std::vector<FootPoint> anew = foot_points(after, points, 1e-6);
     REQUIRE(updated.size() == anew.size());
