@@ -485,7 +485,9 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   record_round(result, 0);
   use_round_settings();
   for (int round = 1; round <= options.fine.levels; ++round) {
-    TSpline refined = refine_toward_data(result.evolved, points, options.tmesh.max_depth, options.fine);
+    const int level = result.evolved.tmesh().finest_leaf_level() + 1;
+    if (level > options.tmesh.max_depth) break;
+    TSpline refined = refine_toward_data(result.evolved, points, level, options.fine);
     if (refined.shared_basis() == result.evolved.shared_basis()) break;  // nothing left to split
     append(evolve_level_set(refined, points, stage, {}, walls), round);
     record_round(result, round);
