@@ -10,7 +10,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git ca-certificates
-  libeigen3-dev libceres-dev libpcl-dev libcgal-dev
+  libeigen3-dev libceres-dev libsuitesparse-dev libpcl-dev libcgal-dev
   nlohmann-json3-dev libyaml-cpp-dev catch2 libpng-dev
   clang libclang-rt-14-dev libomp-dev   # .ci/run: the sanitizer build and the libFuzzer targets (fuzz/)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # python/: the dtsl module, its tests, docs/python_example.py

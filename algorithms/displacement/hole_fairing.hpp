@@ -5,7 +5,8 @@
 // near-minimal surface: flat across a plane cut, dented into a convex part. Thin-plate fairing
 // (continuity 1: the bi-Laplacian, tangent-continuous with the two fixed rings around the hole)
 // instead continues the surface's slope from the rim, as the shape around it would.
-// CGAL::Polygon_mesh_processing::fair (cotangent weights, Voronoi areas, sparse LU) solves each hole.
+// CGAL::Polygon_mesh_processing::fair (cotangent weights, Voronoi areas) solves each hole, with
+// UMFPACK's sparse LU.
 #pragma once
 
 #include <cstddef>
