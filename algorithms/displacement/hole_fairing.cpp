@@ -90,8 +90,8 @@ bool fair_region(SurfaceMesh& sm, const std::vector<SurfaceMesh::Vertex_index>& 
   vs.reserve(region.size());
   for (int v : region) vs.push_back(handle[v]);
   // The system is not symmetric (Voronoi-area-weighted cotangent Laplacians), so an LU: UMFPACK's
-  // factorises the regions of sparse data (tens of thousands of free vertices) 1.5-2.5x faster than
-  // fair()'s default, Eigen's SparseLU (docs/performance.md).
+  // factorises the regions of sparse data (tens of thousands of free vertices) faster than fair()'s
+  // default, Eigen's SparseLU: up to 2.4x, as fast on the largest (docs/performance.md).
   LuSolver lu;
   const bool solved = CGAL::Polygon_mesh_processing::fair(
       sm, vs, CGAL::parameters::fairing_continuity(continuity).sparse_linear_solver(lu));
