@@ -91,7 +91,7 @@ bool fair_region(SurfaceMesh& sm, const std::vector<SurfaceMesh::Vertex_index>& 
   for (int v : region) vs.push_back(handle[v]);
   // The system is not symmetric (Voronoi-area-weighted cotangent Laplacians), so an LU: UMFPACK's
   // factorises the regions of sparse data (tens of thousands of free vertices) faster than fair()'s
-  // default, Eigen's SparseLU: up to 2.4x, as fast on the largest (docs/performance.md).
+  // default, Eigen's SparseLU, on most of the suite's inputs (docs/performance.md).
   LuSolver lu;
   const bool solved = CGAL::Polygon_mesh_processing::fair(
       sm, vs, CGAL::parameters::fairing_continuity(continuity).sparse_linear_solver(lu));
