@@ -79,7 +79,7 @@ void EvolutionOptions::visit(FieldVisitor& v) {
           "tmesh_max_depth); 0: one evolution on the initial T-mesh, as the paper");
   v.field("final_refinement", final_refinement, "refine and fit the level set after the evolution (paper §2.1, [55])");
   v.field("max_points", max_points,
-          "the level-set stage uses at most this many data points: the first few of every finest T-mesh cell "
+          "the level-set stage uses at most this many data points: a few spread over every finest T-mesh cell "
           "(thin_points.hpp: sparse cells keep all theirs; displacement and sharpening use all points); 0: all");
   sync_plugins();
   PrefixedVisitor velocity_fields(v, "velocity_");

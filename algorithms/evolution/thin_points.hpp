@@ -12,11 +12,13 @@
 
 namespace dtsl {
 
-/// At most `max_points` of `points` (all of them if max_points is 0 or not smaller): the first c points,
-/// in input order, of every cube of side `cell` (a grid anchored at the origin), with c the largest cap
-/// that keeps the total within max_points (at least 1: with more occupied cells than max_points, one
-/// point per cell). Sparse cells keep all their points, so sampling density differences and holes
-/// survive; only the redundancy of dense cells goes. Deterministic. AlgorithmError for cell <= 0.
+/// At most `max_points` of `points` (all of them, as given, if max_points is 0 or not smaller): in every
+/// cube of side `cell` (a grid anchored at the origin), c points spread over the cube, with c the largest
+/// cap that keeps the total within max_points (at least 1: with more occupied cells than max_points, one
+/// point per cell, the one nearest the cell's centre). Sparse cells keep all their points, so sampling
+/// density differences and holes survive; only the redundancy of dense cells goes. The result, points
+/// and order, depends on the points only, not on their order in the input (a scanner's scan lines).
+/// AlgorithmError for cell <= 0.
 std::vector<Vec3> thin_points(const std::vector<Vec3>& points, std::size_t max_points, double cell);
 
 }  // namespace dtsl

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -50,13 +51,40 @@ TEST_CASE("thin_points: sparse cells keep all their points, dense ones are cappe
     else capped = after.at(cell);
   }
   CHECK(capped == int(kept.size()) - 50);
-  // Kept points are input points, in input order.
-  std::size_t next = 0;
-  for (const Vec3& x : kept) {
-    while (next < all.size() && all[next] != x) ++next;
-    REQUIRE(next < all.size());
-    ++next;
+  for (const Vec3& x : kept) REQUIRE(std::find(all.begin(), all.end(), x) != all.end());  // input points
+}
+
+TEST_CASE("thin_points: the same points whatever the input order", "[evolution][thin]") {
+  std::vector<Vec3> all = dense_and_sparse(3000, 40);
+  const std::vector<Vec3> kept = thin_points(all, 400, kCell);
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::shuffle(all.begin(), all.end(), rng);
+    CHECK(thin_points(all, 400, kCell) == kept);
   }
+  std::sort(all.begin(), all.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  CHECK(thin_points(all, 400, kCell) == kept);
+}
+
+TEST_CASE("thin_points: a dense cell's kept points cover it, even when the input comes in scan lines",
+          "[evolution][thin]") {
+  // A plane z = 0.05 sampled on a 100 x 100 grid over 5 x 5 cells, listed row by row as a scanner
+  // would: the first points of a cell in input order all lie on one row of it.
+  std::vector<Vec3> grid;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j) grid.emplace_back(0.0025 + 0.005 * j, 0.0025 + 0.005 * i, 0.05);
+  const std::vector<Vec3> kept = thin_points(grid, 25 * 9, kCell);  // 9 points a cell
+  REQUIRE(kept.size() == 25 * 9);
+  // Every grid point has a kept point within a sixth of a cell (3 x 3 sub-cells of a third each, the
+  // kept point near each one's centre), where one row per cell would leave most of the cell a whole
+  // cell's depth away.
+  double farthest = 0.0;
+  for (const Vec3& x : grid) {
+    double nearest = 1e9;
+    for (const Vec3& y : kept) nearest = std::min(nearest, (x - y).norm());
+    farthest = std::max(farthest, nearest);
+  }
+  CHECK(farthest < kCell / 6.0 * std::sqrt(2.0) + 1e-9);
 }
 
 TEST_CASE("thin_points: all points when max_points is 0 or not smaller; one per cell at the least",
