@@ -75,6 +75,11 @@ class BoxCells {
       return false;
     return visit(b, [this](std::size_t c) { return bool(marked_[c]); });
   }
+  /// overlaps(b), or b spans more than `max_cells` cells (true without visiting them).
+  bool may_overlap(const BoundingBox& b, double max_cells) const {
+    const Vec3 span = (b.max - b.min) / cell_ + Vec3::Ones();
+    return span.prod() > max_cells || overlaps(b);
+  }
 
  private:
   static constexpr double kMaxCells = 64.0 * 1024 * 1024;
@@ -165,16 +170,20 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   std::sort(changed_faces.begin(), changed_faces.end());
 
   // A point whose foot lies on an unchanged face keeps it unless a moved face came closer, which needs the
-  // point within its foot's distance (at most `reach`) of that face's box.
-  double reach = 0.0;
-  for (const FootPoint& f : feet) reach = std::max(reach, f.distance);
+  // moved face's box within the foot's distance of the point. Each point is tested with its own distance:
+  // one bound for all (the largest, an outlier's) would send most points near a moved face to the search.
   std::vector<BoundingBox> moved_boxes;
-  for (const int f : changed_faces) moved_boxes.push_back(face_box(after, f, reach));
-  const BoxCells near_moved(moved_boxes);
+  for (const int f : changed_faces) moved_boxes.push_back(face_box(after, f, 0.0));
+  const BoxCells moved_cells(moved_boxes);
+  constexpr double kMaxCellsTested = 64.0;  // a point farther than that from the mesh is searched anyway
   std::vector<std::size_t> kept, lost;
   for (std::size_t k = 0; k < feet.size(); ++k) {
-    if (changed[std::size_t(feet[k].face)]) lost.push_back(k);
-    else if (near_moved.contains(points[k])) kept.push_back(k);
+    if (changed[std::size_t(feet[k].face)]) {
+      lost.push_back(k);
+    } else {
+      const BoundingBox reach = grown(BoundingBox{points[k], points[k]}, feet[k].distance);
+      if (moved_cells.may_overlap(reach, kMaxCellsTested)) kept.push_back(k);
+    }
   }
   std::vector<FootPoint> out = feet;
   const std::optional<TriangleMesh> moved = face_subset(after, changed_faces);

@@ -28,12 +28,12 @@ std::vector<FootPoint> foot_points(const TriangleMesh& mesh, const std::vector<V
 /// foot_points(after, points, snap), given feet = foot_points(before, points, snap) and a mesh `after`
 /// with before's faces whose vertices moved only in part (`vertex_faces`: the faces at each vertex). A
 /// point whose foot lies on a face none of whose vertices moved keeps it unless a moved face is now
-/// closer (checked on those faces alone, and only for points within reach of one); a point whose foot's
-/// face moved is searched among the moved faces and the unchanged faces within that distance of it. Each
-/// evolution step moves only the sharp vertices, so this saves most of the closest-point queries and the
-/// search tree of the whole mesh. The same distances as foot_points; where two faces are equally close
-/// (a foot on their common edge or vertex) it may keep the other one. AlgorithmError when the faces
-/// differ or the sizes do not match.
+/// closer (checked on those faces alone, and only for points within their own foot's distance of one);
+/// a point whose foot's face moved is searched among the moved faces and the unchanged faces within that
+/// distance of it. Each evolution step moves only the sharp vertices, so this saves most of the
+/// closest-point queries and the search tree of the whole mesh. The same distances as foot_points; where
+/// two faces are equally close (a foot on their common edge or vertex) it may keep the other one.
+/// AlgorithmError when the faces differ or the sizes do not match.
 std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const TriangleMesh& after,
                                           const std::vector<std::vector<int>>& vertex_faces,
                                           const std::vector<FootPoint>& feet, const std::vector<Vec3>& points,
