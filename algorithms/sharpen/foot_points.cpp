@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
+#include <utility>
 
 #include "framework/core/error.hpp"
 #include "framework/metrics/metrics.hpp"
@@ -50,30 +52,43 @@ FootPoint foot_at(const TriangleMesh& mesh, const Vec3& q, double distance, int 
   return f;
 }
 
-// The cells of a uniform grid that some boxes overlap: a point in no marked cell lies in none of them.
+// The cells of a uniform grid that some boxes overlap, and which boxes: overlaps() is exact, the cells only
+// rule out most queries quickly.
 class BoxCells {
  public:
-  explicit BoxCells(const std::vector<BoundingBox>& boxes) {
+  explicit BoxCells(std::vector<BoundingBox> boxes) : boxes_(std::move(boxes)) {
     double extent = 0.0;
-    for (const BoundingBox& b : boxes) box_.extend(b.min), box_.extend(b.max), extent += (b.max - b.min).maxCoeff();
-    if (boxes.empty()) {
+    for (const BoundingBox& b : boxes_) box_.extend(b.min), box_.extend(b.max), extent += (b.max - b.min).maxCoeff();
+    if (boxes_.empty()) {
       marked_.assign(1, false);
       return;
     }
     // Cells about a box wide, no narrower than a millionth of the whole, and no more than kMaxCells.
     const Vec3 size = box_.max - box_.min;
-    cell_ = std::max({extent / double(boxes.size()), 1e-6 * size.norm(), 1e-300});
+    cell_ = std::max({extent / double(boxes_.size()), 1e-6 * size.norm(), 1e-300});
     const auto cells = [&](double c) { return (1.0 + size.x() / c) * (1.0 + size.y() / c) * (1.0 + size.z() / c); };
     while (cells(cell_) > kMaxCells) cell_ *= 1.25;
     for (int a = 0; a < 3; ++a) dims_[a] = 1 + long(size[a] / cell_);
     marked_.assign(std::size_t(dims_[0] * dims_[1] * dims_[2]), false);
-    for (const BoundingBox& b : boxes) visit(b, [this](std::size_t c) { marked_[c] = true; return false; });
+    for (std::size_t i = 0; i < boxes_.size(); ++i)
+      visit(boxes_[i], [&](std::size_t c) {
+        marked_[c] = true;
+        in_cell_[c].push_back(int(i));
+        return false;
+      });
   }
   bool contains(const Vec3& p) const { return overlaps(BoundingBox{p, p}); }
   bool overlaps(const BoundingBox& b) const {
     if (!box_.valid() || (b.max.array() < box_.min.array()).any() || (b.min.array() > box_.max.array()).any())
       return false;
-    return visit(b, [this](std::size_t c) { return bool(marked_[c]); });
+    return visit(b, [&](std::size_t c) {
+      if (!marked_[c]) return false;
+      for (const int i : in_cell_.at(c)) {
+        const BoundingBox& o = boxes_[std::size_t(i)];
+        if ((b.max.array() >= o.min.array()).all() && (b.min.array() <= o.max.array()).all()) return true;
+      }
+      return false;
+    });
   }
   /// overlaps(b), or b spans more than `max_cells` cells (true without visiting them).
   bool may_overlap(const BoundingBox& b, double max_cells) const {
@@ -95,10 +110,12 @@ class BoxCells {
           if (f(std::size_t((x * dims_[1] + y) * dims_[2] + z))) return true;
     return false;
   }
+  std::vector<BoundingBox> boxes_;
   BoundingBox box_;
   double cell_ = 1.0;
   long dims_[3] = {1, 1, 1};
   std::vector<bool> marked_;
+  std::unordered_map<std::size_t, std::vector<int>> in_cell_;  // the boxes overlapping each marked cell
 };
 
 // The box of b grown by `grow`, and by a few rounding errors of its coordinates more (a face at exactly
@@ -174,7 +191,7 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   // one bound for all (the largest, an outlier's) would send most points near a moved face to the search.
   std::vector<BoundingBox> moved_boxes;
   for (const int f : changed_faces) moved_boxes.push_back(face_box(after, f, 0.0));
-  const BoxCells moved_cells(moved_boxes);
+  const BoxCells moved_cells(std::move(moved_boxes));
   constexpr double kMaxCellsTested = 64.0;  // a point farther than that from the mesh is searched anyway
   std::vector<std::size_t> kept, lost;
   for (std::size_t k = 0; k < feet.size(); ++k) {
@@ -201,7 +218,7 @@ std::vector<FootPoint> update_foot_points(const TriangleMesh& before, const Tria
   std::vector<BoundingBox> lost_boxes;
   for (std::size_t i = 0; i < lost.size(); ++i)
     lost_boxes.push_back(grown(BoundingBox{lost_points[i], lost_points[i]}, on_moved[i].distance));
-  const BoxCells near_lost(lost_boxes);
+  const BoxCells near_lost(std::move(lost_boxes));
   std::vector<int> unchanged_near;
   for (std::size_t f = 0; f < after.faces.size(); ++f)
     if (!changed[f] && near_lost.overlaps(face_box(after, int(f), 0.0))) unchanged_near.push_back(int(f));
