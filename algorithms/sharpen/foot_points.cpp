@@ -77,7 +77,6 @@ class BoxCells {
         return false;
       });
   }
-  bool contains(const Vec3& p) const { return overlaps(BoundingBox{p, p}); }
   bool overlaps(const BoundingBox& b) const {
     if (!box_.valid() || (b.max.array() < box_.min.array()).any() || (b.min.array() > box_.max.array()).any())
       return false;
