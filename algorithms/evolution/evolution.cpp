@@ -11,6 +11,7 @@
 #include "algorithms/evolution/data_fit.hpp"
 #include "algorithms/evolution/data_carving.hpp"
 #include "algorithms/evolution/data_pieces.hpp"
+#include "algorithms/evolution/gap_refinement.hpp"
 #include "algorithms/evolution/data_wrap.hpp"
 #include "algorithms/evolution/enclosed_volume.hpp"
 #include "algorithms/evolution/initial_level_set.hpp"
@@ -424,6 +425,15 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       TSpline refined = refine_toward_data(f, points, level, options.fine);
       if (refined.shared_basis() == f.shared_basis()) break;
       f = initial_level_set(refined.shared_basis(), points, distance);
+    }
+    // gap_refinement.hpp: a gap between pieces narrower than two cells gets cells one level finer.
+    if (carving && carving->summary().data_pieces > 1) {
+      GapRefinement gaps;
+      Octree refined = refine_narrow_gaps(f.tmesh(), points, carving->pieces(), &gaps);
+      initial_summary["narrow_gaps"] = {{"pairs", gaps.narrow_pairs}, {"split_leaves", gaps.split_leaves},
+                                        {"level", gaps.level}};
+      if (gaps.split_leaves > 0)
+        f = initial_level_set(std::make_shared<TSplineBasis>(std::move(refined)), points, distance);
     }
     use_round_settings();
     return f;
