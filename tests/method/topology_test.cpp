@@ -99,3 +99,12 @@ sampler: {type: area, count: 3000})",
   CHECK(r.first.watertight);
   CHECK(r.first.components >= 1);
 }
+
+// 2.3 spacings, 1.3 cells of the T-mesh's finest level: the T-spline cannot change sign twice across
+// the gap until its leaves there are split once more (gap_refinement.hpp).
+TEST_CASE("two tori closer than two finest cells stay two components", "[topology]") {
+  check_same_topology(run(R"(
+name: two_tori
+shape: {type: pair, object: torus, gap: 0.05}
+sampler: {type: area, count: 8000})"));
+}
