@@ -431,7 +431,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       GapRefinement gaps;
       Octree refined = refine_narrow_gaps(f.tmesh(), points, carving->pieces(), &gaps);
       initial_summary["narrow_gaps"] = {{"pairs", gaps.narrow_pairs}, {"split_leaves", gaps.split_leaves},
-                                        {"level", gaps.level}};
+                                        {"level", gaps.level}, {"seconds", gaps.seconds}};
       if (gaps.split_leaves > 0)
         f = initial_level_set(std::make_shared<TSplineBasis>(std::move(refined)), points, distance);
     }

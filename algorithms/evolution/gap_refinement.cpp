@@ -9,6 +9,7 @@
 #include "algorithms/evolution/data_distance.hpp"
 #include "algorithms/evolution/level_set_transfer.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/timer.hpp"
 
 namespace dtsl {
 
@@ -43,16 +44,20 @@ std::vector<std::pair<Vec3, Vec3>> narrow_gaps(const std::vector<Vec3>& points, 
   std::vector<std::unique_ptr<DataDistance>> trees(count);
   for (int b = 0; b < pieces; ++b)
     if (!members[std::size_t(b)].empty()) trees[std::size_t(b)] = std::make_unique<DataDistance>(members[std::size_t(b)]);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec3& p = points[i];
+  // Per point, then joined in point order: the same segments for any thread count.
+  std::vector<std::vector<std::pair<Vec3, Vec3>>> per_point(points.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long i = 0; i < long(points.size()); ++i) {
+    const Vec3& p = points[std::size_t(i)];
     for (int b = 0; b < pieces; ++b) {
-      if (b == piece[i] || !trees[std::size_t(b)]) continue;
+      if (b == piece[std::size_t(i)] || !trees[std::size_t(b)]) continue;
       const BoundingBox& box = boxes[std::size_t(b)];
       if (((p - box.max).array() > gap).any() || ((box.min - p).array() > gap).any()) continue;
       const NearestData q = trees[std::size_t(b)]->nearest(p);
-      if (q.distance < gap) segments.emplace_back(p, members[std::size_t(b)][std::size_t(q.index)]);
+      if (q.distance < gap) per_point[std::size_t(i)].emplace_back(p, members[std::size_t(b)][std::size_t(q.index)]);
     }
   }
+  for (const auto& found : per_point) segments.insert(segments.end(), found.begin(), found.end());
   return segments;
 }
 
@@ -63,6 +68,7 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
   if (piece.size() != points.size())
     throw AlgorithmError("refine_narrow_gaps: " + std::to_string(piece.size()) + " piece labels for " +
                          std::to_string(points.size()) + " points");
+  Stopwatch clock;
   GapRefinement r;
   const int finest = tree.finest_leaf_level();
   r.level = finest + 1;
@@ -70,6 +76,7 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
   const std::vector<std::pair<Vec3, Vec3>> segments = narrow_gaps(points, piece, kNarrowGapCells * finest_side);
   r.narrow_pairs = int(segments.size());
   if (segments.empty() || r.level > kMaxOctreeDepth) {
+    r.seconds = clock.seconds();
     if (report) *report = r;
     return tree;
   }
@@ -95,6 +102,7 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
     r.split_leaves += int(split.size());
     refined = refine_octree(refined, split, balance);
   }
+  r.seconds = clock.seconds();
   if (report) *report = r;
   return refined;
 }

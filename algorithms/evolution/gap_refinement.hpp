@@ -30,6 +30,7 @@ struct GapRefinement {
   int narrow_pairs = 0;   ///< data points whose nearest point on another piece is within the narrow gap
   int split_leaves = 0;   ///< leaves split (before rebalancing)
   int level = 0;          ///< the level they were split to
+  double seconds = 0.0;
 };
 
 /// `tree` with the leaves that narrow gaps between the pieces of `points` (piece[i] is point i's, as
