@@ -42,8 +42,8 @@ std::vector<std::pair<Vec3, Vec3>> narrow_gaps(const std::vector<Vec3>& points, 
     boxes[std::size_t(piece[i])].extend(points[i]);
   }
   std::vector<std::unique_ptr<DataDistance>> trees(count);
-  for (int b = 0; b < pieces; ++b)
-    if (!members[std::size_t(b)].empty()) trees[std::size_t(b)] = std::make_unique<DataDistance>(members[std::size_t(b)]);
+  for (std::size_t b = 0; b < count; ++b)
+    if (!members[b].empty()) trees[b] = std::make_unique<DataDistance>(members[b]);
   // Per point, then joined in point order: the same segments for any thread count.
   std::vector<std::vector<std::pair<Vec3, Vec3>>> per_point(points.size());
 #pragma omp parallel for schedule(dynamic, 256)
@@ -68,6 +68,8 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
   if (piece.size() != points.size())
     throw AlgorithmError("refine_narrow_gaps: " + std::to_string(piece.size()) + " piece labels for " +
                          std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < piece.size(); ++i)
+    if (piece[i] < 0) throw AlgorithmError("refine_narrow_gaps: point " + std::to_string(i) + " has no piece");
   Stopwatch clock;
   GapRefinement r;
   const int finest = tree.finest_leaf_level();

@@ -35,7 +35,7 @@ struct GapRefinement {
 
 /// `tree` with the leaves that narrow gaps between the pieces of `points` (piece[i] is point i's, as
 /// DataCarving::pieces()) cross split to one level below its finest leaf, rebalanced; `tree` itself
-/// (and split_leaves 0) when no gap is narrow. AlgorithmError when the sizes differ.
+/// (and split_leaves 0) when no gap is narrow. AlgorithmError when the sizes differ or a label is negative.
 Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, const std::vector<int>& piece,
                           GapRefinement* report = nullptr);
 

@@ -101,4 +101,5 @@ TEST_CASE("a wide gap or data in one piece leave the T-mesh as it was", "[gaps]"
   CHECK(refine_narrow_gaps(near_tree, points, one_piece, &report).leaf_count() == near_tree.leaf_count());
   CHECK(report.split_leaves == 0);
   CHECK_THROWS_AS(refine_narrow_gaps(near_tree, points, std::vector<int>(3, 0)), AlgorithmError);
+  CHECK_THROWS_AS(refine_narrow_gaps(near_tree, points, std::vector<int>(points.size(), -1)), AlgorithmError);
 }
