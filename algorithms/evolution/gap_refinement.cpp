@@ -28,6 +28,29 @@ Octree deepened(const Octree& tree) {
 
 namespace {
 
+/// `tree` with the leaves holding any of `samples` split until they are at `level` (rebalanced), the
+/// lattice deepened when `level` is past max_depth; `split_leaves` counts the splits.
+Octree split_to_level(const Octree& tree, const std::vector<Vec3>& samples, int level, int* split_leaves) {
+  Octree refined = level > tree.max_depth() ? deepened(tree) : tree;
+  // One split per pass: a sample in a leaf coarser than level - 1 takes more than one.
+  const Balance balance = balance_of(tree);
+  int splits = 0;
+  for (int pass = 0; pass <= level; ++pass) {
+    std::vector<int> split;
+    for (const Vec3& x : samples) {
+      const int leaf = refined.locate(x);
+      if (refined.leaf(leaf).level < level) split.push_back(leaf);
+    }
+    std::sort(split.begin(), split.end());
+    split.erase(std::unique(split.begin(), split.end()), split.end());
+    if (split.empty()) break;
+    splits += int(split.size());
+    refined = refine_octree(refined, split, balance);
+  }
+  if (split_leaves) *split_leaves = splits;
+  return refined;
+}
+
 /// The segments between data points and their nearest point on another piece, where shorter than `gap`.
 std::vector<std::pair<Vec3, Vec3>> narrow_gaps(const std::vector<Vec3>& points, const std::vector<int>& piece,
                                                double gap) {
@@ -82,7 +105,6 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
     if (report) *report = r;
     return tree;
   }
-  Octree refined = r.level > tree.max_depth() ? deepened(tree) : tree;
   // Each segment sampled at a quarter of the target level's side, so every leaf it crosses holds a sample.
   const double step = 0.25 * finest_side / 2.0;
   std::vector<Vec3> samples;
@@ -90,20 +112,7 @@ Octree refine_narrow_gaps(const Octree& tree, const std::vector<Vec3>& points, c
     const int n = std::max(1, int(std::ceil((q - p).norm() / step)));
     for (int k = 0; k <= n; ++k) samples.push_back(p + (q - p) * (double(k) / double(n)));
   }
-  // One split per pass: a sample in a leaf coarser than the finest takes more than one.
-  const Balance balance = balance_of(tree);
-  for (int pass = 0; pass <= r.level; ++pass) {
-    std::vector<int> split;
-    for (const Vec3& x : samples) {
-      const int leaf = refined.locate(x);
-      if (refined.leaf(leaf).level < r.level) split.push_back(leaf);
-    }
-    std::sort(split.begin(), split.end());
-    split.erase(std::unique(split.begin(), split.end()), split.end());
-    if (split.empty()) break;
-    r.split_leaves += int(split.size());
-    refined = refine_octree(refined, split, balance);
-  }
+  const Octree refined = split_to_level(tree, samples, r.level, &r.split_leaves);
   r.seconds = clock.seconds();
   if (report) *report = r;
   return refined;
