@@ -151,9 +151,18 @@ void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<V
   std::vector<Vec3> hole_positions;
   if (reach > 0) {
     const PointGrid data(points, reach / 3);
+    const double base = reach / kFilterSupport;
     for (std::size_t v = 0; v < nv; ++v) {
       double nearest = 0.0;
-      if (!out.known[v] && data.nearest(positions[v], &nearest) >= 0 && nearest > reach) {
+      if (out.known[v]) continue;
+      const int j = data.nearest(positions[v], &nearest);
+      if (j < 0 || nearest <= reach) continue;
+      // The local spacing at the hole's edge: the data within `reach` of its nearest point, a half-disk
+      // at the edge of a hole, hold about pi reach^2 / (2 s^2) points.
+      int around = 0;
+      data.for_each_within(points[std::size_t(j)], reach, [&](int, double) { ++around; });
+      const double local = std::max(base, reach * std::sqrt(M_PI / (2.0 * std::max(1, around - 1))));
+      if (nearest > kFilterSupport * local) {
         margin[v] = 1;
         queue.push_back(static_cast<int>(v));
         hole_positions.push_back(positions[v]);
