@@ -360,6 +360,48 @@ TEST_CASE("data sparser than the mesh: vertices with no data within the paper's 
   CHECK_THROWS_WITH(bad.check(), Catch::Contains("gaps") && Catch::Contains("holes"));
 }
 
+// Where the data are sparse throughout, a vertex farther than the reach (in the median spacing) from the
+// data is a gap between them, not a hole's edge: the margin is measured in the local spacing there.
+TEST_CASE("sparse half of a sphere: no hole margin where the gaps are a local spacing wide", "[displacement][sparse][holes]") {
+  const SphereSdf f(0.6);
+  const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
+  // The upper half densely sampled (it sets the median spacing), the lower half 25x more sparsely.
+  std::vector<Vec3> points;
+  for (const Vec3& p : bumpy_sphere(3000, 0.63, 0.02, 0.0, 5))
+    if (p.z() > 0) points.push_back(p);
+  for (const Vec3& p : bumpy_sphere(120, 0.63, 0.02, 0.0, 6))
+    if (p.z() < 0) points.push_back(p);
+  const double paper = DisplacementOptions().sigma_factor * MeshLocator(base).mean_edge_length();
+  const auto nearest = [&](const Vec3& x) {
+    double best = 1e9;
+    for (const Vec3& p : points) best = std::min(best, (p.normalized() * 0.6 - x).norm());
+    return best;
+  };
+  DisplacementOptions o;
+  o.rim_offset = 0;
+  const DisplacementResult r = displace_mesh(f, base, points, o);
+  REQUIRE(r.summary["base_filter_fits"].get<bool>());
+  const double wide = r.summary["sigma"].get<double>();
+  std::vector<char> hole(base.vertices.size(), 0);
+  for (int v : r.hole_vertices) hole[v] = 1;
+  std::size_t beyond_reach = 0, gap = 0, gap_holes = 0;
+  for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+    const Vec3& x = base.vertices[v];
+    // The sparse half beyond the density step at z = 0: its dense side is a hole's edge, whose margins
+    // reach a filter's reach from seeds up to about that far below it.
+    if (x.z() > -6 * wide) continue;
+    const double near = nearest(x);
+    if (near > 3 * wide) ++beyond_reach;  // a hole's edge by the median spacing
+    if (near > 3.5 * paper) ++gap, gap_holes += hole[v];
+  }
+  std::cout << "[sparse half] beyond the median reach " << beyond_reach << ", between the data " << gap_holes
+            << " of " << gap << " faired\n";
+  REQUIRE(beyond_reach > 0);
+  REQUIRE(gap > 100);
+  CHECK(gap_holes == gap);  // with the margin measured in the median spacing: 497 of 1694
+  CHECK(mesh_stats(r.mesh).watertight);
+}
+
 TEST_CASE("fine residual passes: the paper's narrow mean of what the wide fit left brings the mesh to the data",
           "[displacement][sparse][fine]") {
   // The capped ball of the test above: the wide fit rounds the crease; its residuals there are what the
