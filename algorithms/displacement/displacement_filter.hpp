@@ -10,7 +10,8 @@
 //             set's own shape is not evidence: by default (SparseGaps::margin) a vertex with no data
 //             within the paper's support is a hole, faired from the supported ones (hole_treatment.hpp)
 //             rather than carried along by a plane fitted to data a spacing away, except within the
-//             wide filter's reach of a hole, where the fit carries the data's surface across its edge.
+//             wide filter's reach of a hole (farther from the data than that reach, measured in the
+//             local spacing at its edge), where the fit carries the data's surface across its edge.
 #pragma once
 
 #include <memory>

@@ -137,11 +137,15 @@ std::vector<int> smoothed_widths(const std::vector<std::vector<int>>& neighbours
 
 // The unsupported vertices (taps, but no data within the support width) become holes, the gaps between
 // sparse data, except a hole's margin: those within `reach` (the base filter's reach; 0: no margin) of a
-// vertex of a hole in the data (no data point within `reach`), joined to one by a path of unsupported or
-// tapless vertices that stays within that distance. There the fit carries the data's surface on across
-// the hole's edge, which the fairing continues (a plane cut, a scan hole); farther on, the fit would
-// stand in for data that are not there. A tapless vertex with data nearby starts no margin: there the
-// level set strays from the data and their feet lie elsewhere.
+// vertex of a hole in the data, joined to one by a path of unsupported or tapless vertices that stays
+// within that distance. There the fit carries the data's surface on across the hole's edge, which the
+// fairing continues (a plane cut, a scan hole); farther on, the fit would stand in for data that are not
+// there. A hole vertex is a tapless one farther from the data than kFilterSupport local spacings of the
+// data at the hole's edge (its nearest data point's), never fewer than `reach`: where the data are sparse
+// throughout (a CAD model's vertices on its flat faces), a vertex `reach` from them lies in a gap a local
+// spacing wide, not at the edge of a hole (docs/design.md §8, "Where a hole's margin starts"). A tapless
+// vertex with data nearby starts no margin: there the level set strays from the data and their feet lie
+// elsewhere.
 void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<Vec3>& positions,
                             const std::vector<std::vector<int>>& neighbours, const std::vector<char>& unsupported,
                             double reach, VertexFilters& out) {
