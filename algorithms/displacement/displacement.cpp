@@ -148,8 +148,7 @@ void DisplacementOptions::visit(FieldVisitor& v) {
           "in the tangent plane (feet to one side: an extrapolation) joins the hole (0: off)");
   v.field("gaps", gaps,
           "adaptive filter, noise-free data: vertices with no data within the paper's width are fit (the wide "
-          "plane fit), fair (holes, faired) or margin (holes except within the wide fit's reach of a hole in "
-          "the data)");
+          "plane fit) or margin (holes, faired, except within the wide fit's reach of a hole in the data)");
 }
 
 void DisplacementOptions::check() const {

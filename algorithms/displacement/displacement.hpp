@@ -43,7 +43,7 @@ struct DisplacementOptions final : Options {
   double rim_offset = 0.8;
   /// The `adaptive` filter on noise-free data sparser than the mesh (displacement_filter.hpp, ours): the
   /// vertices with no data within the paper's support are `fit` (the wide plane fit carries the surface
-  /// across them), `fair` (holes: the hole fill's fairing), or `margin` (holes, except within the wide
+  /// across them) or `margin` (holes, faired by the hole fill, except within the wide
   /// filter's reach of a hole in the data, where the fit carries the data's surface across its edge; a
   /// hole is deeper than that reach in the local spacing at its edge). docs/design.md §8, "Gaps between
   /// sparse data" and "Where a hole's margin starts".

@@ -57,7 +57,6 @@ class AdaptiveFilter final : public DisplacementFilter {
     ladder.noise_sigma = s.noise_sigma;
     // The gaps between sparse data (the header; docs/design.md §8, "Gaps between sparse data").
     if (ladder.base_fits && in.gaps != SparseGaps::fit) ladder.support_width = in.paper_width;
-    ladder.keep_hole_margins = in.gaps == SparseGaps::margin;
     if (s.noise_sigma > 0)
       while (ladder.widths.back() * kWidthRatio <= kWidestWidthEdges * in.mean_edge * (1 + 1e-9))
         ladder.widths.push_back(ladder.widths.back() * kWidthRatio);

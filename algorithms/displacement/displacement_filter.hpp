@@ -39,9 +39,9 @@ struct DataScale {
 
 /// What becomes of the vertices with no data within the paper's support where the `adaptive` filter fits a
 /// plane over the wider data spacing (DisplacementOptions::gaps).
-enum class SparseGaps { fit, fair, margin };
+enum class SparseGaps { fit, margin };
 /// The names DisplacementOptions::gaps accepts, in the enum's order.
-inline constexpr const char* kSparseGapsNames[] = {"fit", "fair", "margin"};
+inline constexpr const char* kSparseGapsNames[] = {"fit", "margin"};
 std::optional<SparseGaps> sparse_gaps_from_name(const std::string& name);
 
 /// What a filter sees: the base mesh M_0, the projection of the data onto it, and grad f's normals.
@@ -91,8 +91,6 @@ struct FilterLadder {
   double noise_sigma = 0.0;
   /// A vertex is a hole unless the hole test passes at this width too (0: the base width's test alone).
   double support_width = 0.0;
-  /// Unsupported vertices within the base filter's reach of a hole keep their taps (SparseGaps::margin).
-  bool keep_hole_margins = true;
 };
 /// Every vertex's taps over `ladder` (ICI where it has several widths). Throws AlgorithmError when no
 /// foot point is valid.

@@ -136,7 +136,7 @@ std::vector<int> smoothed_widths(const std::vector<std::vector<int>>& neighbours
 }
 
 // The unsupported vertices (taps, but no data within the support width) become holes, the gaps between
-// sparse data, except a hole's margin: those within `reach` (the base filter's reach; 0: no margin) of a
+// sparse data, except a hole's margin: those within `reach` (the base filter's reach) of a
 // vertex of a hole in the data, joined to one by a path of unsupported or tapless vertices that stays
 // within that distance. There the fit carries the data's surface on across the hole's edge, which the
 // fairing continues (a plane cut, a scan hole); farther on, the fit would stand in for data that are not
@@ -202,8 +202,8 @@ VertexFilters build_vertex_filters(const FilterInput& in, const FilterLadder& la
   std::vector<char> unsupported(nv, 0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (long v = 0; v < static_cast<long>(nv); ++v) builder.build(v, width_index, unsupported);
-  const double margin_reach = ladder.keep_hole_margins ? kFilterSupport * ladder.widths.front() : 0.0;
-  drop_gaps_between_data(in.points, in.base.vertices, in.neighbours, unsupported, margin_reach, out);
+  drop_gaps_between_data(in.points, in.base.vertices, in.neighbours, unsupported,
+                         kFilterSupport * ladder.widths.front(), out);
   if (!out.feet->widened()) return out;
   const std::vector<int> smoothed = smoothed_widths(in.neighbours, out.known, width_index);
 #pragma omp parallel for schedule(dynamic, 256)
