@@ -358,13 +358,12 @@ TEST_CASE("data sparser than the mesh: vertices with no data within the paper's 
   DisplacementOptions bad;
   bad.gaps = "holes";
   CHECK_THROWS_WITH(bad.check(), Catch::Contains("gaps") && Catch::Contains("holes"));
-  bad.gaps = "fair";  // measured against margin and removed (docs/design.md §8, "Where a hole's margin starts")
-  CHECK_THROWS_WITH(bad.check(), Catch::Contains("gaps") && Catch::Contains("fair"));
 }
 
 // Where the data are sparse throughout, a vertex farther than the reach (in the median spacing) from the
 // data is a gap between them, not a hole's edge: the margin is measured in the local spacing there.
-TEST_CASE("sparse half of a sphere: no hole margin where the gaps are a local spacing wide", "[displacement][sparse][holes]") {
+TEST_CASE("sparse half of a sphere: no hole margin where the gaps are a local spacing wide",
+          "[displacement][sparse][holes]") {
   const SphereSdf f(0.6);
   const TriangleMesh base = base_mesh(f, Vec3(0.6, 0, 0), 0.03);
   // The upper half densely sampled (it sets the median spacing), the lower half 25x more sparsely.
@@ -400,7 +399,7 @@ TEST_CASE("sparse half of a sphere: no hole margin where the gaps are a local sp
             << " of " << gap << " faired\n";
   REQUIRE(beyond_reach > 0);
   REQUIRE(gap > 100);
-  CHECK(gap_holes == gap);  // with the margin measured in the median spacing: 497 of 1694
+  CHECK(gap_holes == gap);  // a margin counted in the median spacing keeps the fit on most of them
   CHECK(mesh_stats(r.mesh).watertight);
 }
 
