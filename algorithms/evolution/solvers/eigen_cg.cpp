@@ -1,14 +1,15 @@
 // `eigen_cg`: conjugate gradients on the normal equations, warm-started from the caller's guess (the
 // evolution passes the previous step's c', docs/design.md §1), Jacobi-preconditioned (an incomplete
-// Cholesky preconditioner made the level-set stage 1.3-2.6x slower and was removed). CG that misses its
+// Cholesky preconditioner made the level-set stage 1.3-2.6x slower and was removed), with the products
+// taken on the stored lower triangle (conjugate_gradient.hpp). CG that misses its
 // tolerance within max_iterations either falls back, documented and tested, to the direct eigen_ldlt
 // factorisation of the same normal equations (on_failure = eigen_ldlt, the default; the report says
 // fell_back, solver = "eigen_ldlt"), or throws (on_failure = error: an AlgorithmError naming eigen_cg
 // and the residual).
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <string>
 
+#include "algorithms/evolution/conjugate_gradient.hpp"
 #include "algorithms/evolution/normal_equations.hpp"
 #include "algorithms/evolution/solvers/solvers.hpp"
 #include "framework/core/timer.hpp"
@@ -50,21 +51,11 @@ class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
     const NormalEquations normal = normal_equations(system);
     const double forming_seconds = clock.seconds();  // where the time goes: forming vs iterating
     if (solution.size() != system.unknowns || !solution.allFinite()) solution = Eigen::VectorXd::Zero(system.unknowns);
-    // The whole symmetric matrix (Lower | Upper): Eigen then multiplies with its transposed, row-major
-    // view, each row's sum on one OpenMP thread — the same result for every thread count, and 1.7x
-    // faster on 2 cores than the serial symmetric product on the lower triangle. (One barrier per
-    // iteration: runs side by side must not oversubscribe the cores, see `dtsl run --jobs`.)
-    const Eigen::SparseMatrix<double> full = normal.lower.selfadjointView<Eigen::Lower>();
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                             Eigen::DiagonalPreconditioner<double>> cg;
-    cg.setTolerance(options_.tolerance);
-    cg.setMaxIterations(options_.max_iterations);
-    cg.compute(full);
-    const Eigen::VectorXd guess = solution;
-    solution = cg.solveWithGuess(normal.rhs, guess);
-    report.iterations = int(cg.iterations());
-    const double cg_error = cg.error();
-    const bool converged = cg.info() == Eigen::Success && solution.allFinite();
+    const ConjugateGradientResult cg =
+        jacobi_conjugate_gradient(normal.lower, normal.rhs, options_.tolerance, options_.max_iterations, solution);
+    report.iterations = cg.iterations;
+    const double cg_error = cg.relative_residual;
+    const bool converged = cg.converged && solution.allFinite();
     report.relative_residual = system.relative_residual(solution);
     report.details = {{"cg_error", cg_error}, {"normal_equations_seconds", forming_seconds}};
     if (!converged) {
