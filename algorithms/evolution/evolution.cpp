@@ -368,6 +368,8 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
     // data_wrap.hpp, data_carving.hpp: the data decide the topology, so the T-mesh is refined toward the data
     // to its finest level before the evolution (a coarse T-mesh would blur the holes and gaps shut), and the
     // one evolution starts near the data, as a coarse-to-fine round does.
+    Stopwatch part;  // where the start's time goes: TL summary initial.timings
+    nlohmann::json timings;
     std::function<double(const Vec3&)> distance;
     std::unique_ptr<DataWrap> wrap;
     std::vector<std::unique_ptr<DataWrap>> piece_wraps;  // carve: the wrap of each piece of the data
@@ -403,13 +405,18 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
                          {"inside_cells", c.inside_cells}, {"boundary_facets", c.boundary_facets},
                          {"data_pieces", c.data_pieces}, {"reopened_cells", c.reopened_cells}, {"seconds", c.seconds}};
     }
+    timings["carving_and_wraps"] = part.seconds();
+    part.restart();
     // enclosed_volume.hpp: data that bound no volume at the ball's scale (an open cut) start from the sphere.
     const std::vector<double> local_spacing =
         carving ? carving->local_spacing() : DataDistance(points).local_spacing(kSpacingNeighbours);
     const EnclosureCheck enclosure =
         check_enclosure(points, local_spacing, initial_summary.at("spacing").get<double>(), distance);
     initial_summary["unenclosed_fraction"] = enclosure.fraction();
+    timings["enclosure"] = part.seconds();
+    part.restart();
     if (enclosure.fraction() > kMaxUnenclosedFraction) {
+      initial_summary["timings"] = timings;
       initial_summary["fallback"] = "sphere";
       return initial_level_set(basis, points, options.initial_radius_factor, options.initial_box_margin);
     }
@@ -426,6 +433,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       if (refined.shared_basis() == f.shared_basis()) break;
       f = initial_level_set(refined.shared_basis(), points, distance);
     }
+    timings["refinement_and_fit"] = part.seconds();  // the start's coefficients on each refined T-mesh
     // gap_refinement.hpp: a gap between pieces narrower than two cells gets cells one level finer.
     if (carving && carving->summary().data_pieces > 1) {
       GapRefinement gaps;
@@ -435,6 +443,7 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
       if (gaps.split_leaves > 0)
         f = initial_level_set(std::make_shared<TSplineBasis>(std::move(refined)), points, distance);
     }
+    initial_summary["timings"] = timings;
     use_round_settings();
     return f;
   }();
@@ -446,8 +455,10 @@ LevelSetResult compute_level_set(const std::vector<Vec3>& all_points, const Evol
   // nothing of the data's faces.
   ThinWalls walls;
   if (options.initial != "sphere" && !initial_summary.contains("fallback")) {
+    Stopwatch part;
     walls = thin_walls(points, DataDistance(points), initial, initial.tmesh());
     initial_summary["thin_walls"] = walls.size();
+    initial_summary["timings"]["thin_walls"] = part.seconds();
   }
   LevelSetResult result = evolve_level_set(initial, points, stage, between_pieces, walls);
 

@@ -76,6 +76,10 @@ TEST_CASE("a cut-open sphere starts from the enclosing sphere and ends as one cl
   REQUIRE(r.summary.contains("initial"));
   CHECK(r.summary["initial"]["unenclosed_fraction"].get<double>() > kMaxUnenclosedFraction);
   CHECK(r.summary["initial"]["fallback"] == "sphere");
+  // The parts the start ran before falling back are timed; the refinement toward the data did not run.
+  CHECK(r.summary["initial"]["timings"]["carving_and_wraps"].get<double>() >= 0.0);
+  CHECK(r.summary["initial"]["timings"]["enclosure"].get<double>() >= 0.0);
+  CHECK(!r.summary["initial"]["timings"].contains("refinement_and_fit"));
   const MeshStats s = mesh_stats(zero_set_mesh(r.level_set, points));
   CHECK(s.components == 1);
   CHECK(s.genus == 0.0);

@@ -88,6 +88,16 @@ TEST_CASE("dtsl on a noisy sphere: displacement lowers e_avr, closed genus-0 res
   CHECK(s.watertight);
   CHECK(s.components == 1);
   CHECK(s.genus == 0.0);
+  // The carve start's record says where its time went, part by part, and the parts fit in TL's time.
+  const nlohmann::json& start = stage(r.result, "TL").summary.at("initial");
+  INFO(start.dump());
+  double parts = 0.0;
+  for (const char* part : {"carving_and_wraps", "enclosure", "refinement_and_fit", "thin_walls"}) {
+    REQUIRE(start.at("timings").contains(part));
+    CHECK(start["timings"][part].get<double>() >= 0.0);
+    parts += start["timings"][part].get<double>();
+  }
+  CHECK(parts <= stage(r.result, "TL").seconds);
   // Against the true sphere: fitting the data closely must not mean following its noise.
   const SurfaceMetrics m = compare_surfaces(r.result.mesh, *r.data.ground_truth, 20000, 0.005, 1);
   INFO("chamfer " << m.chamfer);
