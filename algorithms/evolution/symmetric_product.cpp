@@ -39,36 +39,41 @@ void SymmetricProduct::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
   const int* row = lower_.innerIndexPtr();
   const double* value = lower_.valuePtr();
   const int chunks = static_cast<int>(chunks_.size());
-#pragma omp parallel for schedule(static, 1)
-  for (int c = 0; c < chunks; ++c) {
-    const Chunk& chunk = chunks_[c];
-    if (chunk.last_row < chunk.first_column) continue;
-    double* out = partial_[c].data() - chunk.first_column;  // out[i] for rows i in [first_column, last_row]
-    partial_[c].setZero();
-    for (int j = chunk.first_column; j < chunk.end_column; ++j) {
-      const double xj = x[j];
-      double column_sum = 0.0;  // sum_i a_ij x_i: row j's entries right of the diagonal, by symmetry
-      for (int k = outer[j]; k < outer[j + 1]; ++k) {
-        const int i = row[k];
-        if (i == j) {
-          column_sum += value[k] * xj;
-        } else {
-          out[i] += value[k] * xj;
-          column_sum += value[k] * x[i];
-        }
-      }
-      out[j] += column_sum;
-    }
-  }
   y.resize(n);
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
+  // One parallel region per product (CG takes thousands): the chunks, then, after the loop's barrier,
+  // their sums.
+#pragma omp parallel
+  {
+#pragma omp for schedule(static, 1)
     for (int c = 0; c < chunks; ++c) {
       const Chunk& chunk = chunks_[c];
-      if (i >= chunk.first_column && i <= chunk.last_row) sum += partial_[c][i - chunk.first_column];
+      if (chunk.last_row < chunk.first_column) continue;
+      double* out = partial_[c].data() - chunk.first_column;  // out[i] for rows i in [first_column, last_row]
+      partial_[c].setZero();
+      for (int j = chunk.first_column; j < chunk.end_column; ++j) {
+        const double xj = x[j];
+        double column_sum = 0.0;  // sum_i a_ij x_i: row j's entries right of the diagonal, by symmetry
+        for (int k = outer[j]; k < outer[j + 1]; ++k) {
+          const int i = row[k];
+          if (i == j) {
+            column_sum += value[k] * xj;
+          } else {
+            out[i] += value[k] * xj;
+            column_sum += value[k] * x[i];
+          }
+        }
+        out[j] += column_sum;
+      }
     }
-    y[i] = sum;
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (int c = 0; c < chunks; ++c) {
+        const Chunk& chunk = chunks_[c];
+        if (i >= chunk.first_column && i <= chunk.last_row) sum += partial_[c][i - chunk.first_column];
+      }
+      y[i] = sum;
+    }
   }
 }
 
