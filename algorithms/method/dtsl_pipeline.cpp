@@ -227,7 +227,7 @@ class DtslPipeline final : public Reconstructor {
 
     context.stage_started("MT", "triangulating the level set");
     clock.restart();
-    MeshedLevelSet base{std::move(f), {}, delta, 0, ""};
+    MeshedLevelSet base{std::move(f), {}, delta, 0, "", {}};
     triangulate(base, level_set_points);
     StageRecord mt{"MT", 0.0, std::nullopt, "MI", nlohmann::json::object(), std::nullopt};
     record_mesh(mt, base, bounds);
@@ -246,6 +246,7 @@ class DtslPipeline final : public Reconstructor {
     mt.summary["output_check"] = check.to_json();
     mt.summary["step"] = base.step;
     mt.summary["step_halvings"] = base.halvings;
+    if (!base.halving_reasons.empty()) mt.summary["step_halving_reasons"] = base.halving_reasons;
     if (!base.fallback.empty())
       mt.summary["fallback"] = {{"polygonizer", options_.polygonizer_fallback}, {"reason", base.fallback}};
   }
@@ -302,12 +303,14 @@ class DtslPipeline final : public Reconstructor {
   void triangulate(MeshedLevelSet& m, const std::vector<Vec3>& points) const {
     const double first_step = m.step;
     m.halvings = 0;
+    m.halving_reasons.clear();
     m.fallback.clear();
     for (;;) {
       try {
         m.mi = polygonizers().create(options_.polygonizer, "polygonizer")->polygonize(m.f, points, polygonizer_step(m.step));
         return;
       } catch (const AlgorithmError& e) {
+        m.halving_reasons.emplace_back(e.what());
         if (++m.halvings > kMaxStepHalvings || m.step / 2 < options_.min_step) {
           if (options_.polygonizer_fallback == "none" || options_.polygonizer_fallback == options_.polygonizer) throw;
           m.fallback = e.what();

@@ -57,7 +57,8 @@ DisplacementResult displace_refining_on_flips(MeshedLevelSet& current, const std
     std::optional<TSpline> refined = refined_near_flips(current, dr, level_set_points, how, *solver);
     nlohmann::json round_seconds = {{"refine", part.seconds()}};
     if (!refined) break;  // nothing left to refine near the flips
-    MeshedLevelSet next{std::move(*refined), PolygonizeResult{}, current.step, current.halvings, current.fallback};
+    MeshedLevelSet next{std::move(*refined), PolygonizeResult{}, current.step, current.halvings, current.fallback,
+                        current.halving_reasons};
     try {
       part.restart();
       how.triangulate(next);

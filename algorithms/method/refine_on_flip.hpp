@@ -24,6 +24,7 @@ struct MeshedLevelSet {
   double step = 0.0;     ///< the marching step MI was made with
   int halvings = 0;      ///< the step halvings it took
   std::string fallback;  ///< why the fallback polygonizer made it ("": it did not)
+  std::vector<std::string> halving_reasons;  ///< the polygonizer's error at each step that failed
 };
 
 /// How a round refines and triangulates: the pipeline's refinement, solver and polygonizers.

@@ -186,6 +186,11 @@ TEST_CASE("dtsl: a polygonizer that fails at every step falls back to marching c
   CHECK(mt.summary["fallback"]["polygonizer"] == "marching_cubes");
   CHECK(mt.summary["fallback"]["reason"].get<std::string>().find("test_failing") != std::string::npos);
   CHECK(mt.summary["method"] == "marching_cubes");
+  // Every step that failed before the fallback says why.
+  REQUIRE(mt.summary.contains("step_halving_reasons"));
+  CHECK(mt.summary["step_halving_reasons"].size() == mt.summary["step_halvings"].get<std::size_t>());
+  for (const auto& reason : mt.summary["step_halving_reasons"])
+    CHECK(reason.get<std::string>().find("test_failing") != std::string::npos);
   CHECK(mesh_stats(r.result.mesh).watertight);
   CHECK(r.e_avr.at("MD") < r.e_avr.at("MI"));  // the displacement still runs on the fallback's mesh
 }
