@@ -1,5 +1,6 @@
 #include "algorithms/evolution/conjugate_gradient.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,7 +36,9 @@ ConjugateGradientResult jacobi_conjugate_gradient(const Eigen::SparseMatrix<doub
   int iteration = 0;
   while (residual_norm2 >= threshold && iteration < max_iterations) {
     product.apply(p, product_p);
-    const double alpha = rz / p.dot(product_p);
+    const double curvature = p.dot(product_p);
+    if (!(curvature > 0.0)) break;  // N is not positive definite along p (or not finite): no step
+    const double alpha = rz / curvature;
     x += alpha * p;
     residual -= alpha * product_p;
     residual_norm2 = residual.squaredNorm();

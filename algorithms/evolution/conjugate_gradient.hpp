@@ -12,12 +12,15 @@ namespace dtsl {
 
 struct ConjugateGradientResult {
   int iterations = 0;
-  double relative_residual = 0.0;  ///< |N x - g| / |g| of the returned x (0 for g = 0)
+  /// |r| / |g| with r the recurrence's residual (N x - g in exact arithmetic, as Eigen's CG reports it;
+  /// 0 for g = 0)
+  double relative_residual = 0.0;
   bool converged = false;          ///< relative_residual <= tolerance
 };
 
 /// Solves N x = g from the guess in `x` (resized to zero when its size is wrong), stopping when
-/// |N x - g| < tolerance |g| or after max_iterations. `lower`: N's lower triangle, compressed, column-major.
+/// |N x - g| < tolerance |g| or after max_iterations, or where N is not positive definite along a search
+/// direction (not converged). `lower`: N's lower triangle, compressed, column-major.
 ConjugateGradientResult jacobi_conjugate_gradient(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXd& g,
                                                   double tolerance, int max_iterations, Eigen::VectorXd& x);
 

@@ -1,6 +1,7 @@
 #include "algorithms/evolution/symmetric_product.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -12,16 +13,23 @@ SymmetricProduct::SymmetricProduct(const Eigen::SparseMatrix<double>& lower) : l
   const int n = static_cast<int>(lower.cols());
   const int* outer = lower.outerIndexPtr();
   const int* row = lower.innerIndexPtr();
-  const long nonzeros = outer[n];
+  const std::int64_t nonzeros = outer[n];
   int column = 0;
   for (int c = 0; c < kProductChunks; ++c) {
     Chunk chunk;
     chunk.first_column = column;
-    const long target = nonzeros * (c + 1) / kProductChunks;
+    const std::int64_t target = nonzeros * (c + 1) / kProductChunks;
     while (column < n && (c + 1 == kProductChunks || outer[column + 1] <= target)) ++column;
     chunk.end_column = column;
+    // Every column writes its own row (its sum by symmetry), and each entry its row.
+    if (chunk.end_column > chunk.first_column) chunk.last_row = chunk.end_column - 1;
     for (int j = chunk.first_column; j < chunk.end_column; ++j)
-      if (outer[j + 1] > outer[j]) chunk.last_row = std::max(chunk.last_row, row[outer[j + 1] - 1]);
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        if (row[k] < j)
+          throw std::invalid_argument("SymmetricProduct: entry (" + std::to_string(row[k]) + ", " +
+                                      std::to_string(j) + ") lies above the diagonal");
+        chunk.last_row = std::max(chunk.last_row, row[k]);
+      }
     chunks_.push_back(chunk);
   }
   partial_.resize(chunks_.size());

@@ -1,8 +1,7 @@
 // The product y = N x with a symmetric sparse matrix stored as its lower triangle (the normal equations
 // of normal_equations.hpp), for the conjugate gradients of `eigen_cg`. Each stored entry a_ij (i > j) is
 // read once and used twice (y_i += a_ij x_j, y_j += a_ij x_i): half the memory traffic of a product with
-// the whole matrix, which is what bounds CG's iterations (a perf profile of the hand of the topology
-// suite: 43 % of the job's cycles in Eigen's product with the whole matrix).
+// the whole matrix, which is what bounds CG's iterations (docs/performance.md, "What keeps it fast").
 //
 // The columns are cut into kProductChunks runs of about equal nonzeros, each summed into its own buffer
 // in column order, and the buffers added in chunk order: the result is the same for every thread count
@@ -20,18 +19,21 @@ class SymmetricProduct {
   /// Column runs of the product: fixed, so that the sums do not depend on the thread count.
   static constexpr int kProductChunks = 8;
 
-  /// `lower`: the lower triangle (diagonal included) of a symmetric matrix, column-major, compressed, with
-  /// sorted row indices (as normal_equations leaves it). Kept by reference: it must outlive this object.
+  /// `lower`: the lower triangle (diagonal included) of a symmetric matrix, column-major and compressed
+  /// (as normal_equations leaves it). Kept by reference: it must outlive this object. Throws
+  /// std::invalid_argument for a matrix that is not square, not compressed, or has an entry above the
+  /// diagonal.
   explicit SymmetricProduct(const Eigen::SparseMatrix<double>& lower);
 
   int size() const { return static_cast<int>(lower_.rows()); }
-  /// y = N x (y resized). Throws std::invalid_argument when x's size is not the matrix's.
+  /// y = N x (y resized; y must not be x). Throws std::invalid_argument when x's size is not the
+  /// matrix's. Not thread-safe: the chunks' buffers are this object's (one product at a time).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
  private:
   struct Chunk {
     int first_column = 0, end_column = 0;  ///< columns [first, end)
-    int last_row = -1;                     ///< the largest row its columns reach (-1: none)
+    int last_row = -1;                     ///< the largest row its columns write (-1: no columns)
   };
   const Eigen::SparseMatrix<double>& lower_;
   std::vector<Chunk> chunks_;

@@ -23,9 +23,8 @@ struct EigenCgOptions final : Options {
   // 130-1400) but unstable at scale: on 100k armadillo points 1e-3 and 1e-4 let errors in weakly
   // determined coefficients grow step by step into hundreds of spurious handles, 1e-5 evolves as 1e-6
   // does at half the solve time (measured at 100k points). At 1e-5 and 2e-5 the sphere start with
-  // `geodesic` leaves a membrane in the hole of tests/evolution's torus (with Eigen's product on the whole
-  // matrix too, at 2e-5); at 5e-6, 3e-6 and 1e-6 the hole opens. 5e-6 costs the hand of the dev half 8 %
-  // more iterations (1e-6: 25 %, its TL 6 % longer).
+  // `geodesic` leaves a membrane in the hole of tests/evolution's torus; at 5e-6 and tighter it opens, at
+  // a cost of 8 % more iterations on the dev half's hand (docs/performance.md, "What keeps it fast").
   double tolerance = 5e-6;
   int max_iterations = 2000;
   std::string on_failure = "eigen_ldlt";
@@ -54,6 +53,8 @@ class EigenCgSolver final : public SolverWith<EigenCgOptions, EigenCgSolver> {
     const NormalEquations normal = normal_equations(system);
     const double forming_seconds = clock.seconds();  // where the time goes: forming vs iterating
     if (solution.size() != system.unknowns || !solution.allFinite()) solution = Eigen::VectorXd::Zero(system.unknowns);
+    // One parallel region per product: runs side by side must not oversubscribe the cores (`dtsl run
+    // --jobs`), or every product's barrier waits for a descheduled thread.
     const ConjugateGradientResult cg =
         jacobi_conjugate_gradient(normal.lower, normal.rhs, options_.tolerance, options_.max_iterations, solution);
     report.iterations = cg.iterations;
