@@ -156,6 +156,7 @@ void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<V
   if (reach > 0) {
     const PointGrid data(points, reach / 3);
     const double base = reach / kFilterSupport;
+    std::vector<int> around_point(points.size(), -1);  // data within `reach` of each point, counted once
     for (std::size_t v = 0; v < nv; ++v) {
       double nearest = 0.0;
       if (out.known[v]) continue;
@@ -163,8 +164,11 @@ void drop_gaps_between_data(const std::vector<Vec3>& points, const std::vector<V
       if (j < 0 || nearest <= reach) continue;
       // The local spacing at the hole's edge: the data within `reach` of its nearest point, a half-disk
       // at the edge of a hole, hold about pi reach^2 / (2 s^2) points.
-      int around = 0;
-      data.for_each_within(points[std::size_t(j)], reach, [&](int, double) { ++around; });
+      int& around = around_point[std::size_t(j)];
+      if (around < 0) {
+        around = 0;
+        data.for_each_within(points[std::size_t(j)], reach, [&](int, double) { ++around; });
+      }
       const double local = std::max(base, reach * std::sqrt(M_PI / (2.0 * std::max(1, around - 1))));
       if (nearest > kFilterSupport * local) {
         margin[v] = 1;
