@@ -34,6 +34,13 @@
 
 namespace dtsl {
 
+namespace {
+// Half steps mend a spot too curved for the step. Where more than this share of a component's points
+// need one, the step is too large for the surface itself (a tube thinner than the step closes on itself
+// in a few dozen points), and the caller must reduce it everywhere.
+constexpr double kMaxHalfStepShare = 0.01;
+}  // namespace
+
 void MarchingTriangulationOptions::visit(FieldVisitor& v) {
   v.field("step", step,
           "marching step delta in the [-1,1] frame: the target edge length (paper: 0.2 l_T); must stay well "
@@ -121,6 +128,11 @@ class Marcher {
     r = newton_project(f_, guess, newton_);
     stats_.newton_iterations += static_cast<std::size_t>(r.iterations);
     return r.converged();
+  }
+  /// A new point projected from `step` away from a front point (normal n) landed where the march can
+  /// use it: `distance` from the front point between half and 1.6 steps, its normal within 60 degrees of n.
+  static bool lands(const NewtonProjection& r, const Vec3& n, double distance, double step) {
+    return distance >= 0.5 * step && distance <= 1.6 * step && r.normal().dot(n) >= 0.5;
   }
   int add_vertex(const NewtonProjection& r) {
     V_.push_back(r.point);
@@ -319,15 +331,23 @@ void Marcher::expand(int m) {
   chain.push_back(vp);
   for (int k = 1; k < nt; ++k) {
     const double t = k * dw;
+    const Vec3 direction = std::cos(t) * e1 + std::sin(t) * e2;
     NewtonProjection r;
-    const bool ok = project(pm + delta_ * (std::cos(t) * e1 + std::sin(t) * e2), r);
+    const bool ok = project(pm + delta_ * direction, r);
     const double dist = (r.point - pm).norm();
-    if (!ok || dist < 0.5 * delta_ || dist > 1.6 * delta_ || r.normal().dot(nm) < 0.5)
-      throw AlgorithmError("marching_triangulation: the step " + std::to_string(delta_) +
-                           " is too large for the surface near " + format_point(pm) + " (a new point " +
-                           (ok ? "projected " + std::to_string(dist / delta_) + " steps away or turned its normal"
-                               : std::string("failed to project: ") + to_string(r.status)) +
-                           "); reduce 'step'");
+    if (!(ok && lands(r, nm, dist, delta_))) {
+      // One spot too curved for the step: a point at half the step there, a locally finer patch, before
+      // the caller halves the step everywhere (4x the vertices).
+      NewtonProjection half;
+      if (!(project(pm + 0.5 * delta_ * direction, half) && lands(half, nm, (half.point - pm).norm(), 0.5 * delta_)))
+        throw AlgorithmError("marching_triangulation: the step " + std::to_string(delta_) +
+                             " is too large for the surface near " + format_point(pm) + " (a new point " +
+                             (ok ? "projected " + std::to_string(dist / delta_) + " steps away or turned its normal"
+                                 : std::string("failed to project: ") + to_string(r.status)) +
+                             ", and one at half the step too); reduce 'step'");
+      r = half;
+      ++stats_.half_steps;
+    }
     chain.push_back(add_vertex(r));
   }
   chain.push_back(vq);
@@ -413,8 +433,16 @@ ComponentMesh Marcher::run(const Vec3& seed) {
 
 ComponentMesh march_component(const ImplicitFunction& f, const Vec3& seed, const MarchingTriangulationOptions& options,
                               MarchStatistics& statistics) {
+  const std::size_t half_steps_before = statistics.half_steps;
   Marcher marcher(f, options, statistics);
-  return marcher.run(seed);
+  ComponentMesh component = marcher.run(seed);
+  const std::size_t half_steps = statistics.half_steps - half_steps_before;
+  if (static_cast<double>(half_steps) > kMaxHalfStepShare * static_cast<double>(component.mesh.vertices.size()))
+    throw AlgorithmError("marching_triangulation: the step " + std::to_string(options.step) +
+                         " is too large for the surface: " + std::to_string(half_steps) + " of the " +
+                         std::to_string(component.mesh.vertices.size()) +
+                         " points of a component needed half the step; reduce 'step'");
+  return component;
 }
 
 PolygonizeResult marching_triangulation(const ImplicitFunction& f, const std::vector<Vec3>& data,
@@ -460,6 +488,7 @@ PolygonizeResult marching_triangulation(const ImplicitFunction& f, const std::ve
                {"splits", stats.splits},
                {"merges", stats.merges},
                {"slits_closed", stats.slits_closed},
+               {"half_steps", stats.half_steps},
                {"newton_iterations_per_vertex",
                 s.vertices ? static_cast<double>(stats.newton_iterations) / static_cast<double>(s.vertices) : 0.0}};
   return result;
