@@ -144,3 +144,66 @@ TEST_CASE("marching triangulation options check their fields", "[polygonize][mar
   o.max_components = 0;
   CHECK_THROWS_AS(o.check(), ConfigError);
 }
+
+namespace {
+
+// (x/a)^2 + (y/b)^2 + (z/b)^2 - 1, scaled by b/2 so that |grad f| is about 1 on the sides: a cigar whose
+// tips curve with radius b^2 / a, far tighter than its sides (radius b).
+class Cigar final : public CentralDifferenceImplicit {
+ public:
+  Cigar(double a, double b) : a_(a), b_(b) {}
+
+ protected:
+  double eval(const Vec3& x, Vec3& g) const override {
+    const Vec3 s(1 / (a_ * a_), 1 / (b_ * b_), 1 / (b_ * b_));
+    g = b_ * s.cwiseProduct(x);
+    return 0.5 * b_ * (x.cwiseProduct(s).dot(x) - 1);
+  }
+
+ private:
+  double a_, b_;
+};
+
+}  // namespace
+
+TEST_CASE("marching triangulation takes half steps where one spot is too curved for the step",
+          "[polygonize][marching_triangulation]") {
+  // Cigars whose tips (radius 0.007-0.016) are far tighter than the steps: where a new point at the step
+  // lands too near, too far or turned, one at half the step takes its place, and the mesh is still
+  // closed, of genus 0, on the surface, its edges about the step.
+  std::size_t with_half_steps = 0;
+  for (const double b : {0.08, 0.1, 0.12}) {
+    const Cigar cigar(0.9, b);
+    const std::vector<Vec3> data = surface_points(cigar, cigar.domain(), 500, 3);
+    for (double step = 0.03; step < 0.062; step += 0.004) {
+      INFO("b " << b << ", step " << step);
+      const MarchingTriangulationOptions options = with_step(step);
+      const PolygonizeResult r = marching_triangulation(cigar, data, options);
+      const MeshStats st = mesh_stats(r.mesh);
+      CHECK(st.watertight);
+      CHECK(st.components == 1);
+      CHECK(st.genus == Approx(0));
+      double worst = 0.0;
+      for (const Vec3& v : r.mesh.vertices) {
+        Vec3 g;
+        worst = std::max(worst, std::abs(cigar.evaluate(v, &g)) / g.norm());
+      }
+      CHECK(worst < options.newton_tolerance);
+      CHECK(mean_edge_length(r.mesh) > 0.85 * step);
+      const int half_steps = r.summary.details.at("half_steps").get<int>();
+      CHECK(half_steps <= 0.01 * static_cast<double>(r.mesh.vertices.size()));
+      with_half_steps += half_steps > 0;
+    }
+  }
+  CHECK(with_half_steps > 0);  // the sweep reaches the spots the full step cannot
+}
+
+TEST_CASE("marching triangulation refuses a step too large for the surface, not only for a spot",
+          "[polygonize][marching_triangulation]") {
+  // A tube of radius 0.03 at step 0.06: half steps everywhere would close the tube on itself in a few
+  // dozen points (genus 0, exit 0). It must throw, naming the half step, so that the caller reduces it.
+  const Torus torus(Vec3::Zero(), 0.6, 0.03);
+  const std::vector<Vec3> data = surface_points(torus, torus.domain(), 500, 3);
+  CHECK_THROWS_WITH(marching_triangulation(torus, data, with_step(0.06)),
+                    Catch::Contains("needed half the step") && Catch::Contains("reduce 'step'"));
+}
