@@ -39,6 +39,8 @@ namespace {
 // need one, the step is too large for the surface itself (a tube thinner than the step closes on itself
 // in a few dozen points), and the caller must reduce it everywhere.
 constexpr double kMaxHalfStepShare = 0.01;
+// How many times a new point's step is halved at its spot (the pipeline halves the whole step as often).
+constexpr int kLocalStepHalvings = 3;
 }  // namespace
 
 void MarchingTriangulationOptions::visit(FieldVisitor& v) {
@@ -336,16 +338,22 @@ void Marcher::expand(int m) {
     const bool ok = project(pm + delta_ * direction, r);
     const double dist = (r.point - pm).norm();
     if (!(ok && lands(r, nm, dist, delta_))) {
-      // One spot too curved for the step: a point at half the step there, a locally finer patch, before
-      // the caller halves the step everywhere (4x the vertices).
-      NewtonProjection half;
-      if (!(project(pm + 0.5 * delta_ * direction, half) && lands(half, nm, (half.point - pm).norm(), 0.5 * delta_)))
+      // One spot too curved for the step: a point at a half, a quarter or an eighth of the step there, a
+      // locally finer patch, before the caller halves the step everywhere (4x the vertices per halving).
+      NewtonProjection near;
+      double sub = delta_;
+      bool landed = false;
+      for (int k = 0; k < kLocalStepHalvings && !landed; ++k) {
+        sub *= 0.5;
+        landed = project(pm + sub * direction, near) && lands(near, nm, (near.point - pm).norm(), sub);
+      }
+      if (!landed)
         throw AlgorithmError("marching_triangulation: the step " + std::to_string(delta_) +
                              " is too large for the surface near " + format_point(pm) + " (a new point " +
                              (ok ? "projected " + std::to_string(dist / delta_) + " steps away or turned its normal"
                                  : std::string("failed to project: ") + to_string(r.status)) +
-                             ", and one at half the step too); reduce 'step'");
-      r = half;
+                             ", and one at " + std::to_string(sub / delta_) + " of the step too); reduce 'step'");
+      r = near;
       ++stats_.half_steps;
     }
     chain.push_back(add_vertex(r));

@@ -169,8 +169,8 @@ class Cigar final : public CentralDifferenceImplicit {
 TEST_CASE("marching triangulation takes half steps where one spot is too curved for the step",
           "[polygonize][marching_triangulation]") {
   // Cigars whose tips (radius 0.007-0.016) are far tighter than the steps: where a new point at the step
-  // lands too near, too far or turned, one at half the step takes its place, and the mesh is still
-  // closed, of genus 0, on the surface, its edges about the step.
+  // lands too near, too far or turned, one at half (or a quarter, an eighth) of the step takes its place,
+  // and the mesh is still closed, of genus 0, on the surface, its edges about the step.
   std::size_t with_half_steps = 0;
   for (const double b : {0.08, 0.1, 0.12}) {
     const Cigar cigar(0.9, b);
