@@ -35,7 +35,7 @@
 namespace dtsl {
 
 namespace {
-// Half steps mend a spot too curved for the step. Where more than this share of a component's points
+// Halved steps mend a spot too curved for the step. Where more than this share of a component's points
 // need one, the step is too large for the surface itself (a tube thinner than the step closes on itself
 // in a few dozen points), and the caller must reduce it everywhere.
 constexpr double kMaxHalfStepShare = 0.01;
@@ -449,7 +449,7 @@ ComponentMesh march_component(const ImplicitFunction& f, const Vec3& seed, const
     throw AlgorithmError("marching_triangulation: the step " + std::to_string(options.step) +
                          " is too large for the surface: " + std::to_string(half_steps) + " of the " +
                          std::to_string(component.mesh.vertices.size()) +
-                         " points of a component needed half the step; reduce 'step'");
+                         " points of a component needed a halved step; reduce 'step'");
   return component;
 }
 

@@ -48,7 +48,7 @@ struct MarchStatistics {
   std::size_t slits_closed = 0;    ///< a front point between two copies of one vertex, closed up
   std::size_t open_boundaries = 0; ///< fronts left open where the surface leaves f's domain
   std::size_t newton_iterations = 0;
-  std::size_t half_steps = 0;      ///< new points placed at half the step where the full one failed
+  std::size_t half_steps = 0;      ///< new points placed at a halved step (1-3 times) where the step failed
 };
 
 /// One component from one seed (on or near f = 0). `skipped` when the seed cannot start a march (the

@@ -200,10 +200,10 @@ TEST_CASE("marching triangulation takes half steps where one spot is too curved 
 
 TEST_CASE("marching triangulation refuses a step too large for the surface, not only for a spot",
           "[polygonize][marching_triangulation]") {
-  // A tube of radius 0.03 at step 0.06: half steps everywhere would close the tube on itself in a few
-  // dozen points (genus 0, exit 0). It must throw, naming the half step, so that the caller reduces it.
+  // A tube of radius 0.03 at step 0.06: halved steps everywhere would close the tube on itself in a few
+  // dozen points (genus 0, exit 0). It must throw, naming the halved step, so that the caller reduces it.
   const Torus torus(Vec3::Zero(), 0.6, 0.03);
   const std::vector<Vec3> data = surface_points(torus, torus.domain(), 500, 3);
   CHECK_THROWS_WITH(marching_triangulation(torus, data, with_step(0.06)),
-                    Catch::Contains("needed half the step") && Catch::Contains("reduce 'step'"));
+                    Catch::Contains("needed a halved step") && Catch::Contains("reduce 'step'"));
 }
