@@ -11,7 +11,10 @@
 //      c. otherwise create n_t = floor(3 w / pi) + 1 triangles at p_m, with Hartmann's corrections
 //         (fewer triangles when w / n_t < 0.8 rad, two when one would leave a long edge, one when a
 //         neighbour is closer than delta / 2); the n_t - 1 new points are made in p_m's tangent plane
-//         at distance delta, equally spaced in angle, and projected onto f = 0 by Newton; each new
+//         at distance delta, equally spaced in angle, and projected onto f = 0 by Newton (ours: one
+//         that does not land within 0.5-1.6 delta, its normal within 60 degrees, is made at delta / 2,
+//         / 4 or / 8 instead; a component that needs that at more than 1 % of its points, or that
+//         then covers itself twice, is refused); each new
 //         point gets the distance check of b at once (ours: without it, on thin tubes at coarse
 //         steps a front could grow over another before the new point's turn came);
 //   3. until no front is left (or only fronts whose points all lie outside f's domain).
@@ -28,6 +31,7 @@
 #include <unordered_set>
 
 #include "algorithms/polygonize/front.hpp"
+#include "algorithms/polygonize/overlapping_sheets.hpp"
 #include "algorithms/polygonize/spatial_hash.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/timer.hpp"
@@ -41,6 +45,10 @@ namespace {
 constexpr double kMaxHalfStepShare = 0.01;
 // How many times a new point's step is halved at its spot (the pipeline halves the whole step as often).
 constexpr int kLocalStepHalvings = 3;
+// Two vertices closer than this x the step, facing the same way, more than kOverlapHops edges apart along
+// the mesh: a second sheet (overlapping_sheets.hpp). Within a patch of eighth steps half a step is 4 edges.
+constexpr double kOverlapRadius = 0.5;
+constexpr int kOverlapHops = 8;
 }  // namespace
 
 void MarchingTriangulationOptions::visit(FieldVisitor& v) {
@@ -343,7 +351,7 @@ void Marcher::expand(int m) {
       NewtonProjection near;
       double sub = delta_;
       bool landed = false;
-      for (int k = 0; k < kLocalStepHalvings && !landed; ++k) {
+      for (int halving = 0; halving < kLocalStepHalvings && !landed; ++halving) {
         sub *= 0.5;
         landed = project(pm + sub * direction, near) && lands(near, nm, (near.point - pm).norm(), sub);
       }
@@ -352,7 +360,7 @@ void Marcher::expand(int m) {
                              " is too large for the surface near " + format_point(pm) + " (a new point " +
                              (ok ? "projected " + std::to_string(dist / delta_) + " steps away or turned its normal"
                                  : std::string("failed to project: ") + to_string(r.status)) +
-                             ", and one at " + std::to_string(sub / delta_) + " of the step too); reduce 'step'");
+                             ", and at 1/2, 1/4 and 1/8 of the step too); reduce 'step'");
       r = near;
       ++stats_.half_steps;
     }
@@ -450,6 +458,12 @@ ComponentMesh march_component(const ImplicitFunction& f, const Vec3& seed, const
                          " is too large for the surface: " + std::to_string(half_steps) + " of the " +
                          std::to_string(component.mesh.vertices.size()) +
                          " points of a component needed a halved step; reduce 'step'");
+  // Past a part thinner than the step, a front can grow over the finished mesh unseen.
+  if (half_steps > 0)
+    if (const std::optional<Vec3> at = overlapping_sheets(component.mesh, kOverlapRadius * options.step, kOverlapHops))
+      throw AlgorithmError("marching_triangulation: the step " + std::to_string(options.step) +
+                           " is too large for the surface: after halved steps the mesh covers itself twice near " +
+                           format_point(*at) + "; reduce 'step'");
   return component;
 }
 

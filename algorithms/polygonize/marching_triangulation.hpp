@@ -48,12 +48,13 @@ struct MarchStatistics {
   std::size_t slits_closed = 0;    ///< a front point between two copies of one vertex, closed up
   std::size_t open_boundaries = 0; ///< fronts left open where the surface leaves f's domain
   std::size_t newton_iterations = 0;
-  std::size_t half_steps = 0;      ///< new points placed at a halved step (1-3 times) where the step failed
+  std::size_t half_steps = 0;      ///< new points at a halved step (1-3 times) where the step failed (all marches)
 };
 
 /// One component from one seed (on or near f = 0). `skipped` when the seed cannot start a march (the
 /// first hexagon does not fit: a component smaller than the step). Throws AlgorithmError for a front
-/// that cannot close or a step too large for the curvature.
+/// that cannot close or a step too large for the curvature (where more than 1 % of its points needed a
+/// halved step, or the component then covers itself twice: overlapping_sheets.hpp).
 ComponentMesh march_component(const ImplicitFunction& f, const Vec3& seed, const MarchingTriangulationOptions& options,
                               MarchStatistics& statistics);
 
