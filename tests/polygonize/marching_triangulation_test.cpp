@@ -238,7 +238,7 @@ TEST_CASE("marching triangulation takes half steps where one spot is too curved 
       with_half_steps += half_steps > 0;
     }
   }
-  CHECK(with_half_steps > 0);  // the sweep reaches the spots the full step cannot
+  CHECK(with_half_steps > 0);  // the sweep reaches spots the full step cannot (in some march, kept or not)
 }
 
 TEST_CASE("marching triangulation refuses a step too large for the surface, not only for a spot",
