@@ -14,9 +14,9 @@
 //         at distance delta, equally spaced in angle, and projected onto f = 0 by Newton (ours: one
 //         that does not land within 0.5-1.6 delta, its normal within 60 degrees, is made at delta / 2,
 //         / 4 or / 8 instead; a component that needs that at more than 1 % of its points, or that
-//         then covers itself twice, is refused); each new
-//         point gets the distance check of b at once (ours: without it, on thin tubes at coarse
-//         steps a front could grow over another before the new point's turn came);
+//         then covers itself twice, is refused); each new point gets the distance check of b at
+//         once (ours: without it, on thin tubes at coarse steps a front could grow over another before
+//         the new point's turn came);
 //   3. until no front is left (or only fronts whose points all lie outside f's domain).
 // Taking the smallest angle first keeps the front convex-ish and the triangles near-equilateral;
 // the distance check is what lets fronts meet without overlapping (and what lets the mesh acquire
